@@ -1,0 +1,108 @@
+#include "cli_common.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <ctime>
+#include <sstream>
+
+#include "param_table.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+std::string flag_of(std::string name) {
+  for (char& c : name)
+    if (c == '_') c = '-';
+  return "--" + name;
+}
+
+SpecValue parse_flag_value(const std::string& key, const std::string& text) {
+  const ParamInfo* info = find_param(key);
+  if (key == "env" || (info && info->kind == ParamInfo::Kind::choice)) return text;
+  std::vector<double> parts;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size())
+      throw SpecError(flag_of(key) + ": '" + text + "' is not a number" +
+                      (key == "start" || key == "size" ? " (or X,Y)" : ""));
+    parts.push_back(v);
+  }
+  if (parts.size() == 1) return parts[0];
+  return parts;
+}
+
+}  // namespace
+
+void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw) {
+  auto add = [&](const std::string& key, const std::string& help, const std::string& type) {
+    app.add_option_function<std::string>(
+           flag_of(key), [&raw, key](const std::string& v) { raw[key] = v; }, help)
+        ->type_name(type)
+        ->group("Run parameters");
+  };
+  add("env", "environment: \"empty\", a name from experiments/envs, or a .toml path", "NAME|FILE");
+  add("size", "map side, m (both axes), or X,Y", "L|X,Y");
+  add("start", "start point X,Y, m (default: the environment's start, else 0.5,0.5)", "X,Y");
+  add("ic", "Arnold initial state x,y,z (default 0,1,0)", "X,Y,Z");
+  RunParams defaults;
+  for (const ParamInfo& p : param_table()) {
+    std::string help(p.help);
+    const double d = p.get(defaults);
+    if (p.kind == ParamInfo::Kind::choice) {
+      help += " (" + p.range_text() + "; default " + std::string(p.choices[int(d)]) + ")";
+    } else if (!std::isnan(d)) {
+      std::ostringstream os;
+      os << d;
+      help += " (default " + os.str() + "; " + p.range_text() + ")";
+    }
+    add(std::string(p.name), help, p.kind == ParamInfo::Kind::choice ? "NAME" : "NUM");
+  }
+}
+
+void apply_param_flags(const std::map<std::string, std::string>& raw, RunParams& p, std::string& env) {
+  // Aliases first so that an explicit --size-x etc. wins over --size.
+  for (const char* alias : {"env", "size", "start", "ic"}) {
+    auto it = raw.find(alias);
+    if (it == raw.end()) continue;
+    try {
+      apply_setting(p, env, it->first, parse_flag_value(it->first, it->second));
+    } catch (const SpecError& e) {
+      throw SpecError(flag_of(it->first) + ": " + e.what());
+    }
+  }
+  for (const auto& [key, text] : raw) {
+    if (key == "env" || key == "size" || key == "start" || key == "ic") continue;
+    try {
+      apply_setting(p, env, key, parse_flag_value(key, text));
+    } catch (const SpecError& e) {
+      const std::string msg = e.what();
+      throw SpecError(msg.rfind("--", 0) == 0 ? msg : flag_of(key) + ": " + msg);
+    }
+  }
+}
+
+std::string host_name() {
+  char buf[256] = {};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";
+  return buf;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace chaosweep

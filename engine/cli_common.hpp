@@ -1,0 +1,27 @@
+#pragma once
+// Helpers shared by the subcommands: run-parameter flags generated from the
+// parameter table, exit codes, provenance.
+#include <CLI/CLI.hpp>
+#include <map>
+#include <string>
+
+#include "run_params.hpp"
+#include "sweep_spec.hpp"
+
+namespace chaosweep {
+
+// Exit codes: 0 success (a run that ended timeout/stuck/diverged still ran),
+// 2 bad input (usage, out-of-range value, invalid run), 3 I/O or internal error.
+inline constexpr int exit_ok = 0, exit_bad_input = 2, exit_failure = 3;
+
+// Adds --<param> for every parameter of the table plus --size, --start, --ic
+// and --env; raw values land in `raw` keyed by setting name.
+void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw);
+
+// Applies raw flag values; throws SpecError naming the flag.
+void apply_param_flags(const std::map<std::string, std::string>& raw, RunParams& p, std::string& env);
+
+std::string host_name();
+std::string utc_now();  // ISO 8601
+
+}  // namespace chaosweep

@@ -1,0 +1,10 @@
+#pragma once
+// Each subcommand registers itself on the app and, when chosen, sets the
+// action main() runs after parsing.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace chaosweep {
+void add_run_command(CLI::App& app, std::function<int()>& action);
+void add_sweep_command(CLI::App& app, std::function<int()>& action);
+}  // namespace chaosweep

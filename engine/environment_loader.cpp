@@ -1,0 +1,156 @@
+#include "environment_loader.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+#include <toml++/toml.h>
+
+namespace chaosweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) {
+  throw std::runtime_error("environment " + file + ": " + what);
+}
+
+double number(const toml::node& n, const std::string& file, const std::string& key) {
+  if (auto v = n.value<double>()) return *v;
+  fail(file, "'" + key + "' must be a number");
+}
+
+std::pair<double, double> pair_of(const toml::node& n, const std::string& file, const std::string& key) {
+  if (n.is_number()) {
+    const double v = number(n, file, key);
+    return {v, v};
+  }
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 2) fail(file, "'" + key + "' must be a number or [x, y]");
+  return {number(*a->get(0), file, key), number(*a->get(1), file, key)};
+}
+
+Environment parse_file(const std::string& path, double size_x, double size_y) {
+  toml::table t;
+  try {
+    t = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << e.description() << " at line " << e.source().begin.line;
+    fail(path, os.str());
+  }
+  Environment env;
+  env.name = fs::path(path).stem().string();
+  bool relative = true;
+  for (auto&& [k, node] : t) {
+    const std::string key(k.str());
+    if (key == "name") {
+      if (!node.is_string()) fail(path, "'name' must be a string");
+      env.name = *node.value<std::string>();
+    } else if (key == "units") {
+      const auto u = node.value<std::string>();
+      if (!u || (*u != "relative" && *u != "m"))
+        fail(path, "'units' must be \"relative\" (fractions of the map side) or \"m\"");
+      relative = *u == "relative";
+    } else if (key != "size" && key != "start" && key != "start_units" && key != "obstacles" &&
+               key != "description") {
+      fail(path, "unknown key '" + key +
+                     "' (allowed: name, description, units, size, start, start_units, obstacles)");
+    }
+  }
+  if (const toml::node* s = t.get("size")) {
+    std::tie(env.lx, env.ly) = pair_of(*s, path, "size");
+    if (!(env.lx > 0 && env.ly > 0)) fail(path, "'size' must be positive");
+  } else if (!relative) {
+    fail(path, "'size' is required when units = \"m\"");
+  } else {
+    env.lx = size_x;
+    env.ly = size_y;
+  }
+  const double sx = relative ? env.lx : 1.0, sy = relative ? env.ly : 1.0;
+
+  if (const toml::node* s = t.get("start")) {
+    auto [x, y] = pair_of(*s, path, "start");
+    bool start_m = !relative;
+    if (const toml::node* su = t.get("start_units")) {
+      const auto u = su->value<std::string>();
+      if (!u || (*u != "relative" && *u != "m")) fail(path, "'start_units' must be \"relative\" or \"m\"");
+      start_m = *u == "m";
+    }
+    env.start = start_m ? std::pair{x, y} : std::pair{x * env.lx, y * env.ly};
+  }
+
+  if (const toml::node* o = t.get("obstacles")) {
+    const toml::array* arr = o->as_array();
+    if (!arr) fail(path, "'obstacles' must be an array of {x, y, w, h} tables");
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const std::string where = "obstacles[" + std::to_string(i) + "]";
+      const toml::table* r = arr->get(i)->as_table();
+      if (!r) fail(path, where + " must be a table {x, y, w, h}");
+      double v[4];
+      const char* names[4] = {"x", "y", "w", "h"};
+      for (int j = 0; j < 4; ++j) {
+        const toml::node* n = r->get(names[j]);
+        if (!n) fail(path, where + " lacks '" + names[j] + "'");
+        v[j] = number(*n, path, where + "." + names[j]);
+      }
+      for (auto&& [k, node] : *r) {
+        (void)node;
+        const std::string key(k.str());
+        if (key != "x" && key != "y" && key != "w" && key != "h")
+          fail(path, where + " has unknown key '" + key + "' (allowed: x, y, w, h)");
+      }
+      if (!(v[2] > 0 && v[3] > 0)) fail(path, where + ": w and h must be positive");
+      env.obstacles.push_back({v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy});
+    }
+  }
+  return env;
+}
+
+}  // namespace
+
+std::string find_environment_file(const std::string& name) {
+  std::vector<std::string> dirs;
+  if (const char* p = std::getenv("CHAOSWEEP_ENV_PATH")) {
+    std::stringstream ss(p);
+    for (std::string d; std::getline(ss, d, ':');)
+      if (!d.empty()) dirs.push_back(d);
+  }
+  dirs.push_back(CHAOSWEEP_SOURCE_DIR "/experiments/envs");
+  for (const std::string& d : dirs) {
+    const fs::path candidate = fs::path(d) / (name + ".toml");
+    if (fs::exists(candidate)) return candidate.string();
+  }
+  return {};
+}
+
+Environment load_environment(const std::string& spec, double size_x, double size_y) {
+  if (spec == "empty" || spec.empty()) {
+    Environment env;
+    env.name = "empty";
+    env.lx = size_x;
+    env.ly = size_y;
+    return env;
+  }
+  const bool is_path = spec.find('/') != std::string::npos || spec.ends_with(".toml");
+  const std::string path = is_path ? spec : find_environment_file(spec);
+  if (path.empty() || !fs::exists(path))
+    throw std::runtime_error("environment '" + spec +
+                             "' not found: give a path to a .toml file, \"empty\", or a name "
+                             "from experiments/envs/");
+  return parse_file(path, size_x, size_y);
+}
+
+std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x,
+                                                         double size_y) {
+  std::lock_guard lock(mutex_);
+  auto key = std::tuple{spec, size_x, size_y};
+  auto it = cache_.find(key);
+  if (it != cache_.end()) return it->second;
+  auto env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y));
+  cache_.emplace(key, env);
+  return env;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,34 @@
+#pragma once
+// Environments are data (SPEC 1): a built-in name or a TOML file. See
+// experiments/envs/README.md for the file format.
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <tuple>
+
+#include "environment.hpp"
+
+namespace chaosweep {
+
+// Loads `spec` (a built-in name such as "empty", a name found as
+// experiments/envs/NAME.toml, or a path to a .toml file) for a map whose
+// side is size_x x size_y unless the file fixes its own size.
+// Throws std::runtime_error naming the file and the offending key.
+Environment load_environment(const std::string& spec, double size_x, double size_y);
+
+// Where environment names are looked up: $CHAOSWEEP_ENV_PATH (colon-separated)
+// then the source tree's experiments/envs.
+std::string find_environment_file(const std::string& name);
+
+// Loads each (spec, size) once; shared by all runs of a sweep.
+class EnvironmentCache {
+ public:
+  std::shared_ptr<const Environment> get(const std::string& spec, double size_x, double size_y);
+
+ private:
+  std::mutex mutex_;
+  std::map<std::tuple<std::string, double, double>, std::shared_ptr<const Environment>> cache_;
+};
+
+}  // namespace chaosweep

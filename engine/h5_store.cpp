@@ -1,0 +1,186 @@
+#include "h5_store.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include "result_columns.hpp"
+
+namespace chaosweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr hsize_t chunk_rows = 1024;
+
+[[noreturn]] void h5_fail(const std::string& what) { throw std::runtime_error("HDF5: " + what); }
+
+hid_t text_type(std::size_t size) {
+  hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, size);
+  H5Tset_strpad(t, H5T_STR_NULLTERM);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  return t;
+}
+
+// RAII for the handles of the readers.
+struct Handle {
+  hid_t id;
+  herr_t (*close)(hid_t);
+  ~Handle() {
+    if (id >= 0) close(id);
+  }
+};
+
+// Reads one member of /runs into a buffer of `member_type` elements.
+template <class T>
+std::vector<T> read_member(const std::string& path, const std::string& column, hid_t member_type,
+                           std::size_t elem_size) {
+  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  if (file.id < 0) h5_fail("cannot open " + path);
+  Handle dset{H5Dopen2(file.id, "/runs", H5P_DEFAULT), H5Dclose};
+  if (dset.id < 0) h5_fail(path + " has no /runs dataset");
+  Handle space{H5Dget_space(dset.id), H5Sclose};
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space.id, &n, nullptr);
+  Handle mem{H5Tcreate(H5T_COMPOUND, elem_size), H5Tclose};
+  H5Tinsert(mem.id, column.c_str(), 0, member_type);
+  std::vector<T> out(n);
+  if (n > 0 && H5Dread(dset.id, mem.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    h5_fail("cannot read column '" + column + "' of " + path);
+  return out;
+}
+
+}  // namespace
+
+H5RunWriter::H5RunWriter(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
+  const fs::path parent = fs::path(path_).parent_path();
+  if (!parent.empty()) fs::create_directories(parent);
+  file_ = H5Fcreate(partial_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file_ < 0) h5_fail("cannot create " + partial_);
+
+  const auto& cols = result_columns();
+  for (const Column& c : cols) {
+    offsets_.push_back(row_size_);
+    row_size_ += c.type == Column::Type::text ? c.text_size : 8;
+  }
+  type_ = H5Tcreate(H5T_COMPOUND, row_size_);
+  for (std::size_t i = 0; i < cols.size(); ++i) {
+    const Column& c = cols[i];
+    if (c.type == Column::Type::f64) H5Tinsert(type_, c.name.c_str(), offsets_[i], H5T_NATIVE_DOUBLE);
+    else if (c.type == Column::Type::i64) H5Tinsert(type_, c.name.c_str(), offsets_[i], H5T_NATIVE_INT64);
+    else {
+      hid_t t = text_type(c.text_size);
+      H5Tinsert(type_, c.name.c_str(), offsets_[i], t);
+      H5Tclose(t);
+    }
+  }
+  hsize_t dims = 0, maxdims = H5S_UNLIMITED;
+  hid_t space = H5Screate_simple(1, &dims, &maxdims);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, 1, &chunk_rows);
+  H5Pset_shuffle(dcpl);
+  H5Pset_deflate(dcpl, 4);
+  dset_ = H5Dcreate2(file_, "runs", type_, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  if (dset_ < 0) h5_fail("cannot create /runs in " + partial_);
+}
+
+H5RunWriter::~H5RunWriter() { close(); }
+
+void H5RunWriter::close() {
+  if (dset_ >= 0) H5Dclose(dset_);
+  if (type_ >= 0) H5Tclose(type_);
+  if (file_ >= 0) H5Fclose(file_);
+  dset_ = type_ = file_ = -1;
+}
+
+void H5RunWriter::set_attribute(const std::string& name, const std::string& value) {
+  hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, H5T_VARIABLE);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  hid_t space = H5Screate(H5S_SCALAR);
+  if (H5Aexists(file_, name.c_str()) > 0) H5Adelete(file_, name.c_str());
+  hid_t attr = H5Acreate2(file_, name.c_str(), t, space, H5P_DEFAULT, H5P_DEFAULT);
+  const char* data = value.c_str();
+  const herr_t rc = attr >= 0 ? H5Awrite(attr, t, &data) : -1;
+  if (attr >= 0) H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(t);
+  if (rc < 0) h5_fail("cannot write attribute " + name);
+}
+
+void H5RunWriter::append(const std::vector<RunRow>& rows) {
+  if (rows.empty()) return;
+  const auto& cols = result_columns();
+  std::vector<unsigned char> buf(rows.size() * row_size_, 0);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    unsigned char* base = buf.data() + r * row_size_;
+    for (std::size_t i = 0; i < cols.size(); ++i) {
+      const CellValue v = cols[i].get(rows[r]);
+      unsigned char* dst = base + offsets_[i];
+      if (const double* d = std::get_if<double>(&v)) std::memcpy(dst, d, 8);
+      else if (const std::int64_t* n = std::get_if<std::int64_t>(&v)) std::memcpy(dst, n, 8);
+      else {
+        const std::string& s = std::get<std::string>(v);
+        std::memcpy(dst, s.data(), std::min(s.size(), cols[i].text_size - 1));  // truncated, NUL-ended
+      }
+    }
+  }
+  const hsize_t start = rows_, count = rows.size(), total = rows_ + rows.size();
+  if (H5Dset_extent(dset_, &total) < 0) h5_fail("cannot extend /runs");
+  hid_t fspace = H5Dget_space(dset_);
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+  hid_t mspace = H5Screate_simple(1, &count, nullptr);
+  const herr_t rc = H5Dwrite(dset_, type_, mspace, fspace, H5P_DEFAULT, buf.data());
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  if (rc < 0) h5_fail("cannot write rows to " + partial_);
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  rows_ = total;
+}
+
+void H5RunWriter::finish() {
+  close();
+  fs::rename(partial_, path_);
+}
+
+std::vector<double> read_f64_column(const std::string& path, const std::string& column) {
+  return read_member<double>(path, column, H5T_NATIVE_DOUBLE, sizeof(double));
+}
+
+std::vector<std::int64_t> read_i64_column(const std::string& path, const std::string& column) {
+  return read_member<std::int64_t>(path, column, H5T_NATIVE_INT64, sizeof(std::int64_t));
+}
+
+std::vector<std::string> read_text_column(const std::string& path, const std::string& column) {
+  const Column* c = find_column(column);
+  const std::size_t size = c && c->type == Column::Type::text ? c->text_size : 256;
+  Handle t{text_type(size), H5Tclose};
+  struct Fixed {
+    char s[256];
+  };
+  std::vector<Fixed> raw = read_member<Fixed>(path, column, t.id, sizeof(Fixed));
+  std::vector<std::string> out;
+  for (const Fixed& f : raw) out.emplace_back(f.s, strnlen(f.s, size));
+  return out;
+}
+
+std::string read_attribute(const std::string& path, const std::string& name) {
+  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  if (file.id < 0) h5_fail("cannot open " + path);
+  Handle attr{H5Aopen(file.id, name.c_str(), H5P_DEFAULT), H5Aclose};
+  if (attr.id < 0) h5_fail(path + " has no attribute " + name);
+  Handle t{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(t.id, H5T_VARIABLE);
+  H5Tset_cset(t.id, H5T_CSET_UTF8);
+  char* data = nullptr;
+  if (H5Aread(attr.id, t.id, &data) < 0) h5_fail("cannot read attribute " + name);
+  std::string out = data ? data : "";
+  H5free_memory(data);
+  return out;
+}
+
+}  // namespace chaosweep

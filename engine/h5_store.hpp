@@ -1,0 +1,46 @@
+#pragma once
+// The HDF5 result store (first layout): one chunked, compressed, extendible
+// compound dataset /runs with a row per run (columns from result_columns()),
+// and provenance as UTF-8 string attributes on the root group.
+//
+// Crash safety: rows go to NAME.partial, flushed after every append; the file
+// is renamed to NAME only by finish().
+#include <hdf5.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "run_tuple.hpp"
+
+namespace chaosweep {
+
+class H5RunWriter {
+ public:
+  // Creates `path`.partial (parent directories too). Throws std::runtime_error.
+  explicit H5RunWriter(std::string path);
+  ~H5RunWriter();
+  H5RunWriter(const H5RunWriter&) = delete;
+  H5RunWriter& operator=(const H5RunWriter&) = delete;
+
+  void set_attribute(const std::string& name, const std::string& value);
+  void append(const std::vector<RunRow>& rows);
+  // Closes and renames the partial file to its final name.
+  void finish();
+  std::size_t rows_written() const { return rows_; }
+
+ private:
+  void close();
+  std::string path_, partial_;
+  hid_t file_ = -1, dset_ = -1, type_ = -1;
+  std::size_t row_size_ = 0, rows_ = 0;
+  std::vector<std::size_t> offsets_;
+};
+
+// Readers for tests and tools: one column of /runs, and root attributes.
+std::vector<double> read_f64_column(const std::string& path, const std::string& column);
+std::vector<std::int64_t> read_i64_column(const std::string& path, const std::string& column);
+std::vector<std::string> read_text_column(const std::string& path, const std::string& column);
+std::string read_attribute(const std::string& path, const std::string& name);
+
+}  // namespace chaosweep

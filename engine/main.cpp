@@ -1,0 +1,34 @@
+// chaosweep: batch experiments for chaotic coverage path planners.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "cli_subcommands.hpp"
+#include "version.hpp"
+
+int main(int argc, char** argv) {
+  using namespace chaosweep;
+  CLI::App app{"chaosweep: high-throughput sweeps of chaotic robot coverage planners"};
+  app.require_subcommand(0, 1);
+  bool version = false;
+  app.add_flag("--version", version, "print version, git commit and exit");
+  std::function<int()> action;
+  add_run_command(app, action);
+  add_sweep_command(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? exit_ok : exit_bad_input;
+  }
+  if (version) {
+    std::cout << "chaosweep " << engine_version() << " (git " << git_commit()
+              << (git_dirty() ? ", dirty" : "") << ")\n";
+    return exit_ok;
+  }
+  if (!action) {
+    std::cout << app.help();
+    return exit_bad_input;
+  }
+  return action();
+}

@@ -1,0 +1,79 @@
+#include "result_columns.hpp"
+
+#include "param_table.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+using Type = Column::Type;
+
+Column f64(std::string name, double (*g)(const RunRow&), bool det = true) {
+  return {std::move(name), Type::f64, 0, [g](const RunRow& r) { return CellValue(g(r)); }, det};
+}
+Column i64(std::string name, std::int64_t (*g)(const RunRow&)) {
+  return {std::move(name), Type::i64, 0, [g](const RunRow& r) { return CellValue(g(r)); }, true};
+}
+Column text(std::string name, std::size_t size, std::string (*g)(const RunRow&)) {
+  return {std::move(name), Type::text, size, [g](const RunRow& r) { return CellValue(g(r)); }, true};
+}
+
+std::vector<Column> make_columns() {
+  std::vector<Column> c;
+  c.push_back(i64("run_id", [](const RunRow& r) { return r.tuple.run_id; }));
+  c.push_back(text("env", 64, [](const RunRow& r) { return r.tuple.env_spec; }));
+  // Every run parameter, named as in the parameter table.
+  for (const ParamInfo& p : param_table()) {
+    const ParamInfo* info = &p;
+    switch (p.kind) {
+      case ParamInfo::Kind::real:
+        c.push_back({std::string(p.name), Type::f64, 0,
+                     [info](const RunRow& r) { return CellValue(info->get(r.tuple.params)); }, true});
+        break;
+      case ParamInfo::Kind::integer:
+        c.push_back({std::string(p.name), Type::i64, 0,
+                     [info](const RunRow& r) {
+                       return CellValue(std::int64_t(info->get(r.tuple.params)));
+                     },
+                     true});
+        break;
+      case ParamInfo::Kind::choice:
+        c.push_back({std::string(p.name), Type::text, 16,
+                     [info](const RunRow& r) {
+                       return CellValue(std::string(info->choices[int(info->get(r.tuple.params))]));
+                     },
+                     true});
+        break;
+    }
+  }
+  c.push_back(text("status", 12, [](const RunRow& r) { return std::string(to_string(r.result.status)); }));
+  c.push_back(f64("coverage_time", [](const RunRow& r) { return r.result.coverage_time; }));
+  c.push_back(f64("final_coverage", [](const RunRow& r) { return r.result.final_coverage; }));
+  c.push_back(i64("steps", [](const RunRow& r) { return r.result.steps; }));
+  c.push_back(f64("t_end", [](const RunRow& r) { return r.result.t_end; }));
+  c.push_back(f64("t_opt", [](const RunRow& r) { return r.result.t_opt; }));
+  c.push_back(f64("pr", [](const RunRow& r) { return r.result.pr; }));
+  c.push_back(i64("free_cells", [](const RunRow& r) { return r.result.free_cells; }));
+  c.push_back(i64("visited_cells", [](const RunRow& r) { return r.result.visited_cells; }));
+  c.push_back(i64("dt_halvings", [](const RunRow& r) { return r.result.dt_halvings; }));
+  c.push_back(f64("final_x", [](const RunRow& r) { return r.result.final_x; }));
+  c.push_back(f64("final_y", [](const RunRow& r) { return r.result.final_y; }));
+  c.push_back(text("message", 160, [](const RunRow& r) { return r.result.message; }));
+  c.push_back(f64("wall_time", [](const RunRow& r) { return r.result.wall_time; }, false));
+  return c;
+}
+
+}  // namespace
+
+const std::vector<Column>& result_columns() {
+  static const std::vector<Column> columns = make_columns();
+  return columns;
+}
+
+const Column* find_column(const std::string& name) {
+  for (const Column& c : result_columns())
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,38 @@
+#pragma once
+// A run tuple: everything one run needs, resolved (environment loaded, start
+// and map size filled in). The data path is spec -> RunTuple -> kernel ->
+// RunRow -> HDF5/JSON.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "environment.hpp"
+#include "environment_loader.hpp"
+#include "run_params.hpp"
+
+namespace chaosweep {
+
+struct RunTuple {
+  std::int64_t run_id = 0;
+  std::string env_spec = "empty";  // as the user wrote it: a name or a path
+  RunParams params;
+  std::shared_ptr<const Environment> env;
+};
+
+struct RunRow {
+  RunTuple tuple;
+  RunResult result;
+};
+
+// Default start when neither the run nor the environment gives one: the
+// papers' (0.5 m, 0.5 m).
+inline constexpr double default_start = 0.5;
+
+// Loads the environment and fills the map size and an unset start from it.
+RunTuple resolve_run(std::int64_t run_id, const RunParams& p, const std::string& env_spec,
+                     EnvironmentCache& cache);
+
+// Runs the kernel, timing it; never throws (an exception becomes status error).
+RunRow evaluate(const RunTuple& t);
+
+}  // namespace chaosweep

@@ -1,0 +1,111 @@
+#pragma once
+// The Arnold (ABC) flow coupled to a unicycle robot (seed 000, Eqs. 1-3), and
+// one RK4 step of the 5-state system (x, y, z, X, Y). Templates over the lane
+// type so the scalar reference and the SIMD kernels share one arithmetic path.
+#include "lane_math.hpp"
+#include "sincos.hpp"
+
+namespace chaosweep {
+
+template <class T>
+struct ArnoldCoeffs {
+  T A, B, C;
+};
+
+template <class T>
+struct Vec3 {
+  T x, y, z;
+};
+
+// Sines and cosines of the three Arnold coordinates: the right-hand side and the
+// heading both come from these, so each RK4 stage needs exactly three sincos.
+template <class T>
+struct Trig3 {
+  T sx, cx, sy, cy, sz, cz;
+};
+
+template <class T>
+inline Trig3<T> trig3(const Vec3<T>& u) {
+  Trig3<T> t;
+  sincos(u.x, t.sx, t.cx);
+  sincos(u.y, t.sy, t.cy);
+  sincos(u.z, t.sz, t.cz);
+  return t;
+}
+
+// x' = A sin z + C cos y,  y' = B sin x + A cos z,  z' = C sin y + B cos x.
+template <class T>
+inline Vec3<T> arnold_rhs(const Trig3<T>& t, const ArnoldCoeffs<T>& k) {
+  using lane::fma;
+  return {fma(k.A, t.sz, k.C * t.cy), fma(k.B, t.sx, k.A * t.cz), fma(k.C, t.sy, k.B * t.cx)};
+}
+
+template <class T>
+inline Vec3<T> arnold_rhs(const Vec3<T>& u, const ArnoldCoeffs<T>& k) {
+  return arnold_rhs(trig3(u), k);
+}
+
+// Which Arnold coordinate drives the heading (DSindex 1=x, 2=y, 3=z), as lane
+// masks so lanes may differ.
+template <class T>
+struct HeadingSelect {
+  decltype(T() < T()) is_x, is_y;
+};
+
+inline HeadingSelect<double> heading_select(int ds_index) { return {ds_index == 1, ds_index == 2}; }
+
+template <class T>
+inline T heading_cos(const Trig3<T>& t, const HeadingSelect<T>& h) {
+  return lane::select(h.is_x, t.cx, lane::select(h.is_y, t.cy, t.cz));
+}
+template <class T>
+inline T heading_sin(const Trig3<T>& t, const HeadingSelect<T>& h) {
+  return lane::select(h.is_x, t.sx, lane::select(h.is_y, t.sy, t.sz));
+}
+
+// Result of one RK4 step: the new (wrapped) Arnold state and the robot's
+// displacement. The robot's equations depend on the heading only, so its
+// displacement is the RK4 weighted mean of the stage headings times h_pos.
+template <class T>
+struct Rk4Step {
+  Vec3<T> u;
+  T dX, dY;
+};
+
+// h: step of the Arnold system; h_pos: robot distance per step (f * v * h),
+// which is how the scaling factor f enters (SPEC 2, "Scaling factor f").
+template <class T>
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const HeadingSelect<T>& hs,
+                           T h, T h_pos) {
+  using lane::fma;
+  const T half = h * lane::splat<T>(0.5);
+  const T two = lane::splat<T>(2.0);
+
+  const Trig3<T> t1 = trig3(u);
+  const Vec3<T> k1 = arnold_rhs(t1, k);
+  const Vec3<T> u2{fma(half, k1.x, u.x), fma(half, k1.y, u.y), fma(half, k1.z, u.z)};
+  const Trig3<T> t2 = trig3(u2);
+  const Vec3<T> k2 = arnold_rhs(t2, k);
+  const Vec3<T> u3{fma(half, k2.x, u.x), fma(half, k2.y, u.y), fma(half, k2.z, u.z)};
+  const Trig3<T> t3 = trig3(u3);
+  const Vec3<T> k3 = arnold_rhs(t3, k);
+  const Vec3<T> u4{fma(h, k3.x, u.x), fma(h, k3.y, u.y), fma(h, k3.z, u.z)};
+  const Trig3<T> t4 = trig3(u4);
+  const Vec3<T> k4 = arnold_rhs(t4, k);
+
+  const T sixth = h * lane::splat<T>(1.0 / 6.0);
+  auto combine = [&](T a1, T a2, T a3, T a4) { return fma(two, a2 + a3, a1 + a4); };
+  Rk4Step<T> out;
+  out.u.x = wrap_pi(fma(sixth, combine(k1.x, k2.x, k3.x, k4.x), u.x));
+  out.u.y = wrap_pi(fma(sixth, combine(k1.y, k2.y, k3.y, k4.y), u.y));
+  out.u.z = wrap_pi(fma(sixth, combine(k1.z, k2.z, k3.z, k4.z), u.z));
+
+  const T pos6 = h_pos * lane::splat<T>(1.0 / 6.0);
+  out.dX = pos6 * combine(heading_cos(t1, hs), heading_cos(t2, hs), heading_cos(t3, hs),
+                          heading_cos(t4, hs));
+  out.dY = pos6 * combine(heading_sin(t1, hs), heading_sin(t2, hs), heading_sin(t3, hs),
+                          heading_sin(t4, hs));
+  return out;
+}
+
+}  // namespace chaosweep

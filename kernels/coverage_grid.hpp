@@ -1,0 +1,52 @@
+#pragma once
+// The coverage grid of SPEC 1: square cells of side SR, ceil(L/SR) per axis
+// (the last row/column clipped to the map), a cell free when its centre is not
+// inside an obstacle. Tracks visited free cells incrementally.
+#include <cstdint>
+#include <vector>
+
+#include "environment.hpp"
+
+namespace chaosweep {
+
+class CoverageGrid {
+ public:
+  enum Cell : std::uint8_t { unvisited = 0, visited = 1, blocked = 2 };
+
+  CoverageGrid(const Environment& env, double cell_size);
+
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  int free_cells() const { return free_; }
+  int visited_cells() const { return visited_; }
+  double coverage() const { return free_ > 0 ? double(visited_) / double(free_) : 0.0; }
+  Cell at(int i, int j) const { return Cell(cells_[std::size_t(j) * nx_ + i]); }
+
+  // Cell index of a coordinate, clamped into the grid (a point on the far
+  // wall belongs to the last cell).
+  int cell_x(double x) const { return clamp_index(x * inv_cell_, nx_); }
+  int cell_y(double y) const { return clamp_index(y * inv_cell_, ny_); }
+
+  void mark_cell(int i, int j) {
+    std::uint8_t& c = cells_[std::size_t(j) * nx_ + i];
+    visited_ += (c == unvisited);
+    c = c == unvisited ? std::uint8_t(visited) : c;
+  }
+  void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
+  // Supercover: every cell the closed segment touches, including both side
+  // cells where it passes exactly through a grid corner.
+  void mark_segment(double x0, double y0, double x1, double y1);
+
+ private:
+  static int clamp_index(double g, int n) {
+    if (!(g > 0.0)) return 0;  // also maps NaN to 0; callers reject NaN first
+    const int i = static_cast<int>(g);
+    return i < n ? i : n - 1;
+  }
+
+  int nx_, ny_, free_ = 0, visited_ = 0;
+  double cell_, inv_cell_;
+  std::vector<std::uint8_t> cells_;
+};
+
+}  // namespace chaosweep

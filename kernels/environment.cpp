@@ -1,0 +1,48 @@
+#include "environment.hpp"
+
+#include <algorithm>
+
+namespace chaosweep {
+
+double Environment::obstacle_area() const {
+  // Exact union area by coordinate compression: obstacle counts are small.
+  std::vector<double> xs, ys;
+  for (const Rect& r : obstacles) {
+    xs.insert(xs.end(), {std::clamp(r.x0, 0.0, lx), std::clamp(r.x1, 0.0, lx)});
+    ys.insert(ys.end(), {std::clamp(r.y0, 0.0, ly), std::clamp(r.y1, 0.0, ly)});
+  }
+  std::sort(xs.begin(), xs.end());
+  std::sort(ys.begin(), ys.end());
+  double area = 0.0;
+  for (std::size_t i = 0; i + 1 < xs.size(); ++i)
+    for (std::size_t j = 0; j + 1 < ys.size(); ++j) {
+      const double cx = 0.5 * (xs[i] + xs[i + 1]), cy = 0.5 * (ys[j] + ys[j + 1]);
+      if (obstacle_at(cx, cy) >= 0) area += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
+    }
+  return area;
+}
+
+bool push_out_of_obstacles(const Environment& env, double fo, double& x, double& y) {
+  bool moved = false;
+  // A push can land in a neighbour's margin; a few rounds settle any layout
+  // whose obstacles are not packed tighter than 2*fo.
+  for (int round = 0; round < 8; ++round) {
+    bool again = false;
+    for (const Rect& r : env.obstacles) {
+      const Rect grown{r.x0 - fo, r.y0 - fo, r.x1 + fo, r.y1 + fo};
+      if (!grown.contains(x, y)) continue;
+      const double to_left = x - grown.x0, to_right = grown.x1 - x;
+      const double to_bottom = y - grown.y0, to_top = grown.y1 - y;
+      const double m = std::min({to_left, to_right, to_bottom, to_top});
+      if (m == to_left) x = grown.x0;
+      else if (m == to_right) x = grown.x1;
+      else if (m == to_bottom) y = grown.y0;
+      else y = grown.y1;
+      moved = again = true;
+    }
+    if (!again) break;
+  }
+  return moved;
+}
+
+}  // namespace chaosweep

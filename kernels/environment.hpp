@@ -1,0 +1,38 @@
+#pragma once
+// The workspace a run happens in: a rectangle [0,lx] x [0,ly] with static
+// axis-aligned rectangular obstacles (SPEC 1). Pure data; loading from files
+// is the engine's job.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace chaosweep {
+
+struct Rect {
+  double x0, y0, x1, y1;  // lower-left and upper-right corners, metres
+  bool contains(double x, double y) const { return x > x0 && x < x1 && y > y0 && y < y1; }
+};
+
+struct Environment {
+  std::string name = "empty";
+  double lx = 50.0, ly = 50.0;
+  std::vector<Rect> obstacles;
+  // Start point suggested by the environment (metres); a run's own start wins.
+  std::optional<std::pair<double, double>> start;
+
+  // Index of the obstacle containing (x, y) in its interior, or -1.
+  int obstacle_at(double x, double y) const {
+    for (std::size_t i = 0; i < obstacles.size(); ++i)
+      if (obstacles[i].contains(x, y)) return static_cast<int>(i);
+    return -1;
+  }
+  double obstacle_area() const;  // area covered by obstacles, overlaps counted once
+};
+
+// Eq. 8: a position inside an obstacle, or within fo of it, moves to the
+// obstacle's nearest face plus fo along the axis of least penetration.
+// Repeats (bounded) in case the new position lies in a neighbouring obstacle.
+// Returns true when the point was moved.
+bool push_out_of_obstacles(const Environment& env, double fo, double& x, double& y);
+
+}  // namespace chaosweep

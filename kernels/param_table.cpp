@@ -1,0 +1,137 @@
+#include "param_table.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace chaosweep {
+
+namespace {
+
+using Kind = ParamInfo::Kind;
+
+#define CW_REAL(field, lo, hi, unset_ok, help)                                  \
+  ParamInfo {                                                                   \
+    #field, help, Kind::real, lo, hi, unset_ok, {},                             \
+        [](const RunParams& p) { return double(p.field); },                     \
+        [](RunParams& p, double v) { p.field = v; }                             \
+  }
+#define CW_INT(field, lo, hi, help)                                             \
+  ParamInfo {                                                                   \
+    #field, help, Kind::integer, lo, hi, false, {},                             \
+        [](const RunParams& p) { return double(p.field); },                     \
+        [](RunParams& p, double v) { p.field = int(v); }                        \
+  }
+#define CW_CHOICE(field, type, help, ...)                                       \
+  ParamInfo {                                                                   \
+    #field, help, Kind::choice, 0, 0, false, {__VA_ARGS__},                     \
+        [](const RunParams& p) { return double(int(p.field)); },                \
+        [](RunParams& p, double v) { p.field = type(int(v)); }                  \
+  }
+
+std::vector<ParamInfo> make_table() {
+  std::vector<ParamInfo> t = {
+      CW_CHOICE(planner, Planner, "planner family", "arnold"),
+      CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
+      CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
+      CW_REAL(C, -1e3, 1e3, false, "Arnold coefficient C"),
+      CW_REAL(ic_x, -1e6, 1e6, false, "Arnold initial state x"),
+      CW_REAL(ic_y, -1e6, 1e6, false, "Arnold initial state y"),
+      CW_REAL(ic_z, -1e6, 1e6, false, "Arnold initial state z"),
+      CW_INT(ds_index, 1, 3, "Arnold coordinate driving the heading: 1=x, 2=y, 3=z"),
+      CW_REAL(f, 1e-3, 1e3, false, "scaling factor f (1 = no scaling)"),
+      CW_REAL(v, 1e-3, 1e3, false, "robot speed, m/s"),
+      CW_REAL(dt, 1e-6, 10, false, "integration step, s"),
+      CW_REAL(ep, 1e-15, 1, false, "step-doubling tolerance, m"),
+      CW_REAL(dt_min, 0, 10, false, "smallest step doubling may reach before the run is diverged, s"),
+      CW_REAL(fo, 0, 1e3, false, "boundary/obstacle offset fo, m"),
+      CW_REAL(size_x, 1e-3, 1e6, false, "map side along X, m"),
+      CW_REAL(size_y, 1e-3, 1e6, false, "map side along Y, m"),
+      CW_REAL(sr, 1e-3, 1e4, false, "sensing range = coverage cell side, m"),
+      CW_REAL(start_x, -1e9, 1e9, true, "start X, m (unset: the environment's start)"),
+      CW_REAL(start_y, -1e9, 1e9, true, "start Y, m (unset: the environment's start)"),
+      CW_CHOICE(boundary, Boundary, "wall handling: Eq. 7 mirror or unfolded-plane fold",
+                "mirror", "fold"),
+      CW_CHOICE(integrator, Integrator, "fixed-step RK4 or RK4 with step doubling", "rk4",
+                "rk4-doubling"),
+      CW_CHOICE(sampling, Sampling,
+                "cells visited: by the segment between samples, or by the samples only",
+                "segments", "points"),
+      CW_REAL(dc, 1e-6, 1, false, "desired coverage, fraction of free cells"),
+      CW_REAL(max_time, 0, 1e10, false, "robot-time budget, s (0: max_pr * T_opt)"),
+      CW_REAL(max_pr, 1e-3, 1e6, false, "budget in multiples of T_opt when max_time = 0"),
+      CW_REAL(stuck_time, 0, 1e10, false,
+              "end as stuck after this long without a new cell, s (0: never)"),
+      CW_INT(niter, 1, 1e9, "points per segment (SystemScaler call)"),
+  };
+  return t;
+}
+
+std::string format_number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+}  // namespace
+
+std::string ParamInfo::range_text() const {
+  if (kind == Kind::choice) {
+    std::string s = "one of";
+    for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : " ") + std::string(choices[i]);
+    return s;
+  }
+  std::string s = std::string(kind == Kind::integer ? "an integer" : "a number") + " in [" +
+                  format_number(lo) + ", " + format_number(hi) + "]";
+  return s;
+}
+
+std::string ParamInfo::check(double v) const {
+  if (std::isnan(v) && may_be_unset) return {};
+  bool ok = std::isfinite(v);
+  if (kind == Kind::choice) ok = ok && v >= 0 && v < double(choices.size()) && v == std::floor(v);
+  else ok = ok && v >= lo && v <= hi && (kind != Kind::integer || v == std::floor(v));
+  if (ok) return {};
+  std::string shown = kind == Kind::choice ? std::string("index ") + format_number(v) : format_number(v);
+  return std::string(name) + " = " + shown + " is out of range: must be " + range_text();
+}
+
+std::optional<double> ParamInfo::choice_index(std::string_view value) const {
+  for (std::size_t i = 0; i < choices.size(); ++i)
+    if (choices[i] == value) return double(i);
+  return std::nullopt;
+}
+
+const std::vector<ParamInfo>& param_table() {
+  static const std::vector<ParamInfo> table = make_table();
+  return table;
+}
+
+const ParamInfo* find_param(std::string_view name) {
+  for (const ParamInfo& p : param_table())
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::string check_ranges(const RunParams& p) {
+  for (const ParamInfo& info : param_table())
+    if (std::string e = info.check(info.get(p)); !e.empty()) return e;
+  return {};
+}
+
+const char* to_string(Planner v) { return v == Planner::arnold ? "arnold" : "?"; }
+const char* to_string(Boundary v) { return v == Boundary::mirror ? "mirror" : "fold"; }
+const char* to_string(Integrator v) { return v == Integrator::rk4 ? "rk4" : "rk4-doubling"; }
+const char* to_string(Sampling v) { return v == Sampling::segments ? "segments" : "points"; }
+const char* to_string(Status v) {
+  switch (v) {
+    case Status::ok: return "ok";
+    case Status::timeout: return "timeout";
+    case Status::diverged: return "diverged";
+    case Status::stuck: return "stuck";
+    case Status::invalid: return "invalid";
+    case Status::error: return "error";
+  }
+  return "?";
+}
+
+}  // namespace chaosweep

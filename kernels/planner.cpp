@@ -1,0 +1,70 @@
+#include "planner.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "arnold_planner.hpp"
+#include "coverage_grid.hpp"
+#include "metrics.hpp"
+#include "param_table.hpp"
+
+namespace chaosweep {
+
+namespace {
+// Bounds the grid's memory (one byte per cell) for absurd size/sr pairs.
+constexpr double max_cells = 1 << 28;
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+std::string validate_run(const RunParams& p, const Environment& env) {
+  if (std::string e = check_ranges(p); !e.empty()) return e;
+  if (!(env.lx > 0 && env.ly > 0)) return "environment '" + env.name + "' has no area";
+  if ((env.lx / p.sr) * (env.ly / p.sr) > max_cells)
+    return "sr = " + fmt(p.sr) + " gives more than 2^28 cells on a " + fmt(env.lx) + " x " +
+           fmt(env.ly) + " m map: raise sr or shrink the map";
+  if (p.boundary == Boundary::mirror && !(2 * p.fo < env.lx && 2 * p.fo < env.ly))
+    return "fo = " + fmt(p.fo) + " must be less than half the map side (" +
+           fmt(std::min(env.lx, env.ly) / 2) + ")";
+  if (!(std::isfinite(p.start_x) && std::isfinite(p.start_y)))
+    return "start is unset: give start_x/start_y or an environment with a start";
+  if (p.start_x < 0 || p.start_x > env.lx || p.start_y < 0 || p.start_y > env.ly)
+    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") is outside the map [0, " +
+           fmt(env.lx) + "] x [0, " + fmt(env.ly) + "]";
+  if (int k = env.obstacle_at(p.start_x, p.start_y); k >= 0)
+    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") lies inside obstacle #" +
+           std::to_string(k) + " of environment '" + env.name + "'";
+  return {};
+}
+
+RunResult run_planner(const RunParams& p, const Environment& env) {
+  RunResult r;
+  r.message = validate_run(p, env);
+  if (!r.message.empty()) {
+    r.status = Status::invalid;
+    return r;
+  }
+  CoverageGrid grid(env, p.sr);
+  r.free_cells = grid.free_cells();
+  if (r.free_cells == 0) {
+    r.status = Status::invalid;
+    r.message = "environment '" + env.name + "' has no free cell";
+    return r;
+  }
+  r.t_opt = t_opt(p.dc, env.lx * env.ly - env.obstacle_area(), p.sr, p.v);
+  switch (p.planner) {
+    case Planner::arnold:
+      run_arnold(p, env, grid, r);
+      break;
+  }
+  r.visited_cells = grid.visited_cells();
+  r.final_coverage = grid.coverage();
+  if (r.status == Status::ok) r.pr = r.coverage_time / r.t_opt;
+  return r;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,18 @@
+#pragma once
+// The entry point every caller uses: run one planner simulation.
+#include <string>
+
+#include "environment.hpp"
+#include "run_params.hpp"
+
+namespace chaosweep {
+
+// Why (p, env) cannot run, or empty. Checks ranges, the map, the start point.
+std::string validate_run(const RunParams& p, const Environment& env);
+
+// A pure function of its arguments: never throws for bad input (the result
+// says `invalid`), never depends on anything but p and env. The map's size is
+// env.lx x env.ly; p.size_x/size_y are carried for the record only.
+RunResult run_planner(const RunParams& p, const Environment& env);
+
+}  // namespace chaosweep

@@ -1,0 +1,64 @@
+#pragma once
+// Applies a displacement to the robot and keeps it in the free workspace:
+// boundary (Eq. 7 mirror or fold), then obstacles (Eq. 8). Records the visited
+// cells on the coverage grid.
+#include <algorithm>
+
+#include "boundary.hpp"
+#include "coverage_grid.hpp"
+#include "environment.hpp"
+#include "run_params.hpp"
+
+namespace chaosweep {
+
+class RobotMotion {
+ public:
+  RobotMotion(const RunParams& p, const Environment& env, CoverageGrid& grid)
+      : env_(env), grid_(grid), boundary_(p.boundary), sampling_(p.sampling), fo_(p.fo),
+        x_(p.start_x), y_(p.start_y), ux_(p.start_x), uy_(p.start_y) {
+    grid_.mark_point(x_, y_);
+  }
+
+  double x() const { return x_; }
+  double y() const { return y_; }
+
+  void move(double dx, double dy) {
+    const double px = x_, py = y_;
+    if (boundary_ == Boundary::mirror) {
+      x_ = mirror_eq7(x_ + dx, 0.0, env_.lx, fo_);
+      y_ = mirror_eq7(y_ + dy, 0.0, env_.ly, fo_);
+    } else {
+      ux_ += dx;
+      uy_ += dy;
+      x_ = triangle_fold(ux_, 0.0, env_.lx);
+      y_ = triangle_fold(uy_, 0.0, env_.ly);
+    }
+    if (!env_.obstacles.empty()) push_out();
+    if (sampling_ == Sampling::segments) grid_.mark_segment(px, py, x_, y_);
+    else grid_.mark_point(x_, y_);
+  }
+
+ private:
+  void push_out() {
+    const double bx = x_, by = y_;
+    if (!push_out_of_obstacles(env_, fo_, x_, y_)) return;
+    // A push near a wall must not leave the map.
+    x_ = std::clamp(x_, 0.0, env_.lx);
+    y_ = std::clamp(y_, 0.0, env_.ly);
+    if (boundary_ == Boundary::fold) {
+      // Carry the correction to the unfolded plane with the fold's local slope.
+      ux_ += fold_slope(ux_, 0.0, env_.lx) * (x_ - bx);
+      uy_ += fold_slope(uy_, 0.0, env_.ly) * (y_ - by);
+    }
+  }
+
+  const Environment& env_;
+  CoverageGrid& grid_;
+  Boundary boundary_;
+  Sampling sampling_;
+  double fo_;
+  double x_, y_;    // position in the map
+  double ux_, uy_;  // unfolded position (fold boundary only)
+};
+
+}  // namespace chaosweep

@@ -1,0 +1,65 @@
+#pragma once
+// What a run is (its parameters) and what it yields (its result). A run is a
+// pure function RunParams x Environment -> RunResult (SPEC 6).
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace chaosweep {
+
+enum class Planner { arnold };
+enum class Boundary { mirror, fold };
+enum class Integrator { rk4, rk4_doubling };
+enum class Sampling { segments, points };
+enum class Status { ok, timeout, diverged, stuck, invalid, error };
+
+inline constexpr double unset = std::numeric_limits<double>::quiet_NaN();
+
+struct RunParams {
+  Planner planner = Planner::arnold;
+  // Arnold flow coefficients and initial state (SPEC 2 defaults).
+  double A = 0.5, B = 0.25, C = 0.25;
+  double ic_x = 0.0, ic_y = 1.0, ic_z = 0.0;
+  int ds_index = 3;      // heading = x (1), y (2) or z (3)
+  double f = 1.0;        // scaling factor (1 = no scaling)
+  double v = 1.0;        // robot speed, m/s
+  double dt = 0.1;       // initial integration step, s
+  double ep = 1e-6;      // step-doubling tolerance, m
+  double dt_min = 1e-9;  // step doubling below this step ends the run as diverged, s
+  double fo = 0.5;       // boundary/obstacle offset, m
+  double size_x = 50.0, size_y = 50.0;  // map sides, m (an environment may fix them)
+  double sr = 1.0;       // sensing range = cell side, m
+  double start_x = unset, start_y = unset;  // unset: the environment's start, else (fo, fo)
+  Boundary boundary = Boundary::mirror;
+  Integrator integrator = Integrator::rk4;
+  Sampling sampling = Sampling::segments;
+  double dc = 0.9;          // desired coverage
+  double max_time = 0.0;    // robot-time budget, s; 0 = auto (max_pr * T_opt)
+  double max_pr = 20.0;     // auto budget in multiples of T_opt
+  double stuck_time = 0.0;  // end as stuck after this long without a new cell; 0 = never
+  int niter = 1000;         // points per segment (SystemScaler call)
+};
+
+struct RunResult {
+  Status status = Status::invalid;
+  double coverage_time = unset;  // robot time when coverage first reached dc (ok only)
+  double final_coverage = 0.0;   // visited free cells / free cells at the end
+  std::int64_t steps = 0;        // accepted integration steps
+  double t_end = 0.0;            // robot time at the end of the run
+  double t_opt = unset;          // lawnmower reference time
+  double pr = unset;             // coverage_time / t_opt
+  std::int64_t free_cells = 0;
+  std::int64_t visited_cells = 0;
+  std::int64_t dt_halvings = 0;  // step-doubling halvings
+  double final_x = unset, final_y = unset;
+  double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
+  std::string message;           // why a run is invalid / errored
+};
+
+const char* to_string(Planner);
+const char* to_string(Boundary);
+const char* to_string(Integrator);
+const char* to_string(Sampling);
+const char* to_string(Status);
+
+}  // namespace chaosweep

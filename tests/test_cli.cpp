@@ -1,0 +1,110 @@
+// The command line, exercised as a user would: the built binary, its output
+// and its exit status.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <regex>
+
+#include "h5_store.hpp"
+#include "test_util.hpp"
+
+using namespace chaosweep;
+using chaosweep::test::run_chaosweep;
+using chaosweep::test::TempDir;
+using chaosweep::test::write_file;
+
+namespace {
+
+double json_number(const std::string& json, const std::string& key) {
+  std::smatch m;
+  const std::regex re("\"" + key + "\": ([-0-9.eE+]+|null)");
+  if (!std::regex_search(json, m, re) || m[1] == "null") return NAN;
+  return std::stod(m[1]);
+}
+
+const char* small_sweep = R"(
+[sweep]
+name = "cli-small"
+[fixed]
+size = 12
+sr = 2
+max_time = 2000
+[axes]
+A = [0.4, 0.5, 0.6]
+B = [0.2, 0.3]
+ds_index = [1, 2, 3]
+)";
+
+}  // namespace
+
+TEST(CliRun, PapersRow1EndsOkWithCoverageTimeInThousandsOfSeconds) {
+  const auto r = run_chaosweep("run --planner arnold --size 50 --sr 1 --ds-index 3 --start 0.5,0.5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"status\": \"ok\""), std::string::npos) << r.out;
+  const double ct = json_number(r.out, "coverage_time");
+  EXPECT_GE(ct, 1000.0);
+  EXPECT_LT(ct, 45000.0);
+  EXPECT_DOUBLE_EQ(json_number(r.out, "t_opt"), 2250.0);
+  EXPECT_DOUBLE_EQ(json_number(r.out, "pr"), ct / 2250.0);
+  EXPECT_DOUBLE_EQ(json_number(r.out, "final_coverage"), 0.9);
+  EXPECT_GT(json_number(r.out, "steps"), 0);
+}
+
+TEST(CliRun, PrintsAReadableResultWithoutJson) {
+  const auto r = run_chaosweep("run --size 20 --sr 2 --A 0.5 --B 0.25 --C 0.25");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("status          ok"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("PR "), std::string::npos) << r.out;
+}
+
+TEST(CliRun, OutOfRangeFlagNamesTheFlagAndRangeAndExits2) {
+  const auto r = run_chaosweep("run --sr 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--sr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("[0.001, 10000]"), std::string::npos) << r.err;
+  const auto d = run_chaosweep("run --ds-index 7");
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_NE(d.err.find("--ds-index"), std::string::npos) << d.err;
+  const auto s = run_chaosweep("run --start 3");
+  EXPECT_EQ(s.exit_code, 2);
+  EXPECT_NE(s.err.find("start must be an array of 2 numbers"), std::string::npos) << s.err;
+}
+
+TEST(CliRun, StartInsideAnObstacleIsInvalidAndExits2) {
+  TempDir tmp;
+  write_file(tmp.file("box.toml"), "obstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n");
+  const auto r = run_chaosweep("run --size 10 --env " + tmp.file("box.toml") + " --start 5,5 --json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find("\"status\": \"invalid\""), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("inside obstacle"), std::string::npos) << r.err;
+}
+
+TEST(CliSweep, WritesOneRowPerRunIndependentOfThreads) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  const auto one = run_chaosweep("sweep " + tmp.file("s.toml") + " -o " + tmp.file("one.h5") + " --threads 1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto two = run_chaosweep("sweep " + tmp.file("s.toml") + " -o " + tmp.file("two.h5") + " --threads 2");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_NE(one.out.find("runs        18"), std::string::npos) << one.out;
+  EXPECT_NE(one.out.find("median CT"), std::string::npos) << one.out;
+  for (const char* col : {"coverage_time", "final_coverage", "final_x", "final_y", "t_end"}) {
+    const auto a = read_f64_column(tmp.file("one.h5"), col), b = read_f64_column(tmp.file("two.h5"), col);
+    ASSERT_EQ(a.size(), 18u);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      EXPECT_TRUE(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i]))) << col << " row " << i;
+  }
+  EXPECT_EQ(read_text_column(tmp.file("one.h5"), "status"), read_text_column(tmp.file("two.h5"), "status"));
+  EXPECT_EQ(read_attribute(tmp.file("one.h5"), "threads"), "1");
+}
+
+TEST(CliSweep, BadSpecExits2AndWritesNothing) {
+  TempDir tmp;
+  write_file(tmp.file("bad.toml"), "[axes]\nsr = [1, -4]\n");
+  const auto r = run_chaosweep("sweep " + tmp.file("bad.toml") + " -o " + tmp.file("out.h5"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("axes.sr[1]"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("out.h5")));
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("out.h5.partial")));
+}

@@ -1,0 +1,263 @@
+// Engine: environments, sweep specs, the TBB runner, the HDF5 store, JSON.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "environment_loader.hpp"
+#include "h5_store.hpp"
+#include "json_writer.hpp"
+#include "result_columns.hpp"
+#include "sweep_runner.hpp"
+#include "sweep_spec.hpp"
+#include "test_util.hpp"
+
+using namespace chaosweep;
+using chaosweep::test::TempDir;
+using chaosweep::test::write_file;
+
+namespace {
+
+// A ~few-second sweep: 3 x 3 x 2 x 2 runs of the original planner, small map.
+const char* small_spec = R"(
+[sweep]
+name = "small"
+[fixed]
+size = 12
+sr = 1
+max_time = 3000
+[axes]
+C = [0.2, 0.25, 0.3]
+A = { start = 0.4, stop = 0.6, num = 3 }
+ds_index = [1, 3]
+boundary = ["mirror", "fold"]
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_sweep_spec(text, "spec.toml");
+  } catch (const SpecError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool same_rows(const std::vector<RunRow>& a, const std::vector<RunRow>& b, std::string& diff) {
+  if (a.size() != b.size()) {
+    diff = "row counts differ";
+    return false;
+  }
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (const Column& c : result_columns()) {
+      if (!c.deterministic) continue;
+      const CellValue x = c.get(a[i]), y = c.get(b[i]);
+      const bool both_nan = std::holds_alternative<double>(x) && std::holds_alternative<double>(y) &&
+                            std::isnan(std::get<double>(x)) && std::isnan(std::get<double>(y));
+      if (!both_nan && x != y) {
+        diff = "row " + std::to_string(i) + " column " + c.name;
+        return false;
+      }
+    }
+  return true;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------- sweep specs
+
+TEST(SweepSpec, ExpandsTheCartesianProductInFileOrder) {
+  const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
+  ASSERT_EQ(s.axes.size(), 4u);
+  EXPECT_EQ(s.axes[0].key, "C");  // file order, not alphabetical
+  EXPECT_EQ(s.axes[1].key, "A");
+  EXPECT_EQ(s.size(), 3 * 3 * 2 * 2);
+  RunParams p;
+  std::string env;
+  s.run_settings(0, p, env);
+  EXPECT_EQ(p.C, 0.2);
+  EXPECT_EQ(p.A, 0.4);
+  EXPECT_EQ(p.ds_index, 1);
+  EXPECT_EQ(p.boundary, Boundary::mirror);
+  EXPECT_EQ(p.size_x, 12.0);
+  s.run_settings(1, p, env);  // last axis varies fastest
+  EXPECT_EQ(p.boundary, Boundary::fold);
+  s.run_settings(35, p, env);
+  EXPECT_EQ(p.C, 0.3);
+  EXPECT_EQ(p.A, 0.6);
+  EXPECT_EQ(p.ds_index, 3);
+}
+
+TEST(SweepSpec, RangesIncludeTheirStopValue) {
+  const SweepSpec s = parse_sweep_spec("[axes]\nB = { start = 0.1, stop = 0.8, step = 0.1 }\n", "x");
+  ASSERT_EQ(s.axes[0].values.size(), 8u);
+  EXPECT_NEAR(std::get<double>(s.axes[0].values.back()), 0.8, 1e-12);
+  const SweepSpec t = parse_sweep_spec("[axes]\nB = { start = 0.1, stop = 0.8, num = 15 }\n", "x");
+  EXPECT_EQ(std::get<double>(t.axes[0].values.back()), 0.8);
+}
+
+TEST(SweepSpec, AcceptsAliasesAndTuples) {
+  const SweepSpec s = parse_sweep_spec(
+      "[fixed]\nsize = [40, 30]\nic = [0.1, 0.2, 0.3]\n[axes]\nstart = [[1, 1], [2, 3]]\n", "x");
+  RunParams p;
+  std::string env;
+  s.run_settings(1, p, env);
+  EXPECT_EQ(p.size_x, 40.0);
+  EXPECT_EQ(p.size_y, 30.0);
+  EXPECT_EQ(p.ic_z, 0.3);
+  EXPECT_EQ(p.start_x, 2.0);
+  EXPECT_EQ(p.start_y, 3.0);
+}
+
+TEST(SweepSpec, ErrorsNameTheKeyAndTheAllowedRange) {
+  EXPECT_NE(error_of("[fixed]\nsr = 0\n").find("fixed.sr"), std::string::npos);
+  EXPECT_NE(error_of("[fixed]\nsr = 0\n").find("[0.001, 10000]"), std::string::npos);
+  EXPECT_NE(error_of("[fixed]\nfoo = 1\n").find("unknown key 'foo'"), std::string::npos);
+  EXPECT_NE(error_of("[axes]\nds_index = [1, 2, 5]\n").find("axes.ds_index[2]"), std::string::npos);
+  EXPECT_NE(error_of("[axes]\nA = []\n").find("axes.A: is empty"), std::string::npos);
+  EXPECT_NE(error_of("[axes]\nA = { start = 0, stop = 1 }\n").find("step or num"), std::string::npos);
+  EXPECT_NE(error_of("[axes]\nA = { start = 0, stop = 1, nun = 3 }\n").find("'nun'"), std::string::npos);
+  EXPECT_NE(error_of("[fixed]\nboundary = \"wall\"\n").find("mirror, fold"), std::string::npos);
+  EXPECT_NE(error_of("[fixed]\nA = \"big\"\n").find("must be a number"), std::string::npos);
+  EXPECT_NE(error_of("[runs]\n").find("unknown section 'runs'"), std::string::npos);
+  EXPECT_NE(error_of("[fixed]\nA = 1\n[axes]\nA = [1, 2]\n").find("one place"), std::string::npos);
+  EXPECT_NE(error_of("[fixed\n").find("line 1"), std::string::npos);
+}
+
+TEST(SweepSpec, DemoSpecIsAFewHundredRunsOfTheOriginalPlanner) {
+  const SweepSpec s = load_sweep_spec(std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml");
+  EXPECT_EQ(s.name, "demo");
+  EXPECT_EQ(s.size(), 7 * 8 * 5);
+  EXPECT_EQ(s.base.planner, Planner::arnold);
+  EXPECT_EQ(s.base.sr, 4.0);
+  EXPECT_EQ(s.base.size_x, 50.0);
+}
+
+// ------------------------------------------------------------ environments
+
+TEST(Environment, LoadsRelativeObstaclesScaledToTheMap) {
+  TempDir tmp;
+  write_file(tmp.file("one.toml"),
+             "name = \"one\"\nunits = \"relative\"\nstart = [0.5, 0.5]\nstart_units = \"m\"\n"
+             "obstacles = [{ x = 0.3, y = 0.3, w = 0.4, h = 0.4 }]\n");
+  const Environment e = load_environment(tmp.file("one.toml"), 100.0, 100.0);
+  EXPECT_EQ(e.name, "one");
+  ASSERT_EQ(e.obstacles.size(), 1u);
+  EXPECT_DOUBLE_EQ(e.obstacles[0].x0, 30.0);
+  EXPECT_DOUBLE_EQ(e.obstacles[0].x1, 70.0);
+  EXPECT_DOUBLE_EQ(e.obstacle_area(), 1600.0);
+  EXPECT_EQ(e.start->first, 0.5);
+}
+
+TEST(Environment, MetreFilesFixTheirOwnSize) {
+  TempDir tmp;
+  write_file(tmp.file("m.toml"), "units = \"m\"\nsize = [20, 10]\nobstacles = [{x=1,y=1,w=2,h=2}]\n");
+  const Environment e = load_environment(tmp.file("m.toml"), 50.0, 50.0);
+  EXPECT_EQ(e.lx, 20.0);
+  EXPECT_EQ(e.ly, 10.0);
+  EXPECT_EQ(e.obstacles[0].x1, 3.0);
+}
+
+TEST(Environment, MalformedFilesGiveErrorsNamingTheKey) {
+  TempDir tmp;
+  auto error = [&](const std::string& text) -> std::string {
+    write_file(tmp.file("bad.toml"), text);
+    try {
+      load_environment(tmp.file("bad.toml"), 50, 50);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error("colour = 1\n").find("unknown key 'colour'"), std::string::npos);
+  EXPECT_NE(error("units = \"m\"\n").find("'size' is required"), std::string::npos);
+  EXPECT_NE(error("obstacles = [{x=1,y=1,w=2}]\n").find("obstacles[0] lacks 'h'"), std::string::npos);
+  EXPECT_NE(error("obstacles = [{x=1,y=1,w=-2,h=1}]\n").find("positive"), std::string::npos);
+  EXPECT_NE(error("obstacles = [\n").find("line"), std::string::npos);
+  EXPECT_THROW(load_environment("no_such_environment", 50, 50), std::runtime_error);
+}
+
+// ------------------------------------------------------------------ runner
+
+TEST(SweepRunner, RowsDoNotDependOnThreadsOrBatches) {
+  const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
+  SweepOptions one, two, odd_batches;
+  one.threads = 1;
+  two.threads = 2;
+  odd_batches.threads = 2;
+  odd_batches.batch_size = 7;
+  const auto a = run_sweep_rows(s, one), b = run_sweep_rows(s, two), c = run_sweep_rows(s, odd_batches);
+  std::string diff;
+  EXPECT_TRUE(same_rows(a, b, diff)) << diff;
+  EXPECT_TRUE(same_rows(a, c, diff)) << diff;
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].tuple.run_id, std::int64_t(i));
+  int ok = 0;
+  for (const RunRow& r : a) ok += r.result.status == Status::ok;
+  EXPECT_GT(ok, 0);
+}
+
+TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
+  TempDir tmp;
+  write_file(tmp.file("box.toml"), "obstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n");
+  const SweepSpec s = parse_sweep_spec("[fixed]\nsize = 10\nenv = \"" + tmp.file("box.toml") +
+                                           "\"\ndc = 0.3\n[axes]\nstart = [[1, 1], [5, 5], [9, 9]]\n",
+                                       "x");
+  const auto rows = run_sweep_rows(s, {});
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].result.status, Status::ok);
+  EXPECT_EQ(rows[1].result.status, Status::invalid);
+  EXPECT_NE(rows[1].result.message.find("inside obstacle"), std::string::npos);
+  EXPECT_EQ(rows[2].result.status, Status::ok);
+}
+
+// ------------------------------------------------------------------- store
+
+TEST(H5Store, RoundTripsRowsAndProvenance) {
+  TempDir tmp;
+  const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
+  const auto rows = run_sweep_rows(s, {});
+  const std::string path = tmp.file("sub/dir/r.h5");
+  {
+    H5RunWriter w(path);
+    EXPECT_TRUE(std::filesystem::exists(path + ".partial"));
+    EXPECT_FALSE(std::filesystem::exists(path));
+    w.set_attribute("spec", s.text);
+    w.append(std::vector<RunRow>(rows.begin(), rows.begin() + 5));
+    w.append(std::vector<RunRow>(rows.begin() + 5, rows.end()));
+    w.finish();
+  }
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+  const auto ids = read_i64_column(path, "run_id");
+  const auto ct = read_f64_column(path, "coverage_time");
+  const auto status = read_text_column(path, "status");
+  const auto boundary = read_text_column(path, "boundary");
+  ASSERT_EQ(ids.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(ids[i], std::int64_t(i));
+    EXPECT_EQ(status[i], to_string(rows[i].result.status));
+    EXPECT_EQ(boundary[i], to_string(rows[i].tuple.params.boundary));
+    if (rows[i].result.status == Status::ok) EXPECT_EQ(ct[i], rows[i].result.coverage_time);
+    else EXPECT_TRUE(std::isnan(ct[i]));
+  }
+  EXPECT_EQ(read_attribute(path, "spec"), s.text);
+}
+
+TEST(H5Store, HasOneColumnPerParameterAndOutput) {
+  for (const char* name : {"run_id", "env", "planner", "A", "B", "C", "f", "ds_index", "sr", "size_x",
+                           "start_x", "status", "coverage_time", "final_coverage", "steps", "t_opt",
+                           "pr", "wall_time"})
+    EXPECT_NE(find_column(name), nullptr) << name;
+}
+
+// -------------------------------------------------------------------- json
+
+TEST(Json, WritesEveryColumnAndNanAsNull) {
+  RunRow row;
+  row.result.status = Status::timeout;
+  const std::string j = row_to_json(row, false);
+  for (const Column& c : result_columns())
+    EXPECT_NE(j.find("\"" + c.name + "\":"), std::string::npos) << c.name;
+  EXPECT_NE(j.find("\"coverage_time\":null"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"status\":\"timeout\""), std::string::npos) << j;
+  EXPECT_NE(j.find("\"dt\":0.1,"), std::string::npos) << j;  // shortest round-trip text
+  EXPECT_EQ(json_escape("a\"b\\c\n"), "a\\\"b\\\\c\\n");
+}

@@ -1,0 +1,424 @@
+// Kernels: the numerics of SPEC sections 1 and 2 (original Arnold planner).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <set>
+
+#include "arnold_flow.hpp"
+#include "boundary.hpp"
+#include "coverage_grid.hpp"
+#include "environment.hpp"
+#include "metrics.hpp"
+#include "planner.hpp"
+#include "robot_motion.hpp"
+#include "sincos.hpp"
+#include "test_util.hpp"
+
+using namespace chaosweep;
+using chaosweep::test::small_run;
+
+namespace {
+
+Environment square(double side, std::vector<Rect> obstacles = {}) {
+  Environment env;
+  env.name = "test";
+  env.lx = env.ly = side;
+  env.obstacles = std::move(obstacles);
+  return env;
+}
+
+std::set<std::pair<int, int>> marked_cells(const CoverageGrid& g) {
+  std::set<std::pair<int, int>> s;
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i)
+      if (g.at(i, j) == CoverageGrid::visited) s.insert({i, j});
+  return s;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- sincos
+
+TEST(SinCos, MatchesLibmToTwoUlpOnTheWrappedRange) {
+  for (int i = -100000; i <= 100000; ++i) {
+    const double x = std::numbers::pi * i / 100000.0;
+    double s, c;
+    sincos(x, s, c);
+    ASSERT_NEAR(s, std::sin(x), 2.3e-16) << x;
+    ASSERT_NEAR(c, std::cos(x), 2.3e-16) << x;
+  }
+}
+
+TEST(SinCos, StaysAccurateOutsideTheWrappedRange) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e4, 1e4);
+  for (int i = 0; i < 10000; ++i) {
+    const double x = u(rng);
+    double s, c;
+    sincos(x, s, c);
+    ASSERT_NEAR(s, std::sin(x), 1e-15) << x;
+    ASSERT_NEAR(c, std::cos(x), 1e-15) << x;
+  }
+}
+
+TEST(WrapPi, MapsIntoMinusPiPiAndKeepsTheAngle) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  for (int i = 0; i < 10000; ++i) {
+    const double x = u(rng), w = wrap_pi(x);
+    ASSERT_LE(std::fabs(w), std::numbers::pi + 1e-12) << x;
+    ASSERT_NEAR(std::sin(w), std::sin(x), 1e-12) << x;
+    ASSERT_NEAR(std::cos(w), std::cos(x), 1e-12) << x;
+  }
+  EXPECT_EQ(wrap_pi(1.0), 1.0);  // already inside: untouched
+}
+
+// ------------------------------------------------------------ Arnold flow
+
+TEST(ArnoldRhs, IsTheAbcFlow) {
+  const ArnoldCoeffs<double> k{0.5, 0.25, 0.25};
+  for (const Vec3<double> u : {Vec3<double>{0, 1, 0}, Vec3<double>{0.3, -2.1, 1.7}, Vec3<double>{3, 3, -3}}) {
+    const Vec3<double> d = arnold_rhs(u, k);
+    EXPECT_NEAR(d.x, 0.5 * std::sin(u.z) + 0.25 * std::cos(u.y), 1e-15);
+    EXPECT_NEAR(d.y, 0.25 * std::sin(u.x) + 0.5 * std::cos(u.z), 1e-15);
+    EXPECT_NEAR(d.z, 0.25 * std::sin(u.y) + 0.25 * std::cos(u.x), 1e-15);
+  }
+}
+
+TEST(Rk4Step, HeadingIsTheSelectedCoordinate) {
+  // With A=B=C=0 the state is frozen, so one step moves the robot by
+  // h_pos * (cos s, sin s) with s the DSindex coordinate.
+  const ArnoldCoeffs<double> k{0, 0, 0};
+  const Vec3<double> u{0.3, 1.1, -2.0};
+  const double s[3] = {0.3, 1.1, -2.0};
+  for (int ds = 1; ds <= 3; ++ds) {
+    const auto st = rk4_step(u, k, heading_select(ds), 0.1, 0.4);
+    EXPECT_NEAR(st.dX, 0.4 * std::cos(s[ds - 1]), 1e-15) << ds;
+    EXPECT_NEAR(st.dY, 0.4 * std::sin(s[ds - 1]), 1e-15) << ds;
+  }
+}
+
+namespace {
+// Integrates the coupled system for `total` seconds with step h; returns the
+// robot displacement (unbounded plane) and the unwrapped-equivalent state.
+std::array<double, 5> integrate(double h, double total) {
+  const ArnoldCoeffs<double> k{0.5, 0.25, 0.25};
+  Vec3<double> u{0, 1, 0};
+  double X = 0, Y = 0;
+  const int n = int(std::lround(total / h));
+  for (int i = 0; i < n; ++i) {
+    const auto st = rk4_step(u, k, heading_select(3), h, h);
+    u = st.u;
+    X += st.dX;
+    Y += st.dY;
+  }
+  return {std::sin(u.x), std::sin(u.y), std::sin(u.z), X, Y};
+}
+double distance(const std::array<double, 5>& a, const std::array<double, 5>& b) {
+  double m = 0;
+  for (int i = 0; i < 5; ++i) m = std::max(m, std::fabs(a[i] - b[i]));
+  return m;
+}
+}  // namespace
+
+TEST(Rk4Step, IsFourthOrderUnderStepHalving) {
+  const double total = 20.0;
+  const auto ref = integrate(0.4 / 256, total);
+  const double e1 = distance(integrate(0.4, total), ref);
+  const double e2 = distance(integrate(0.2, total), ref);
+  const double e3 = distance(integrate(0.1, total), ref);
+  EXPECT_GT(e1 / e2, 12.0);
+  EXPECT_LT(e1 / e2, 20.0);
+  EXPECT_GT(e2 / e3, 13.0);
+  EXPECT_LT(e2 / e3, 19.0);
+}
+
+// -------------------------------------------------------------- boundaries
+
+TEST(MirrorEq7, ReflectsAboutTheLineAtOffsetFo) {
+  // X = -X + 2(left + fo) and X = -X + 2(right - fo).
+  EXPECT_DOUBLE_EQ(mirror_eq7(0.3, 0.0, 50.0, 0.5), 0.7);
+  EXPECT_DOUBLE_EQ(mirror_eq7(-0.2, 0.0, 50.0, 0.5), 1.2);
+  EXPECT_DOUBLE_EQ(mirror_eq7(49.8, 0.0, 50.0, 0.5), 49.2);
+  EXPECT_DOUBLE_EQ(mirror_eq7(50.3, 0.0, 50.0, 0.5), 48.7);
+  EXPECT_EQ(mirror_eq7(17.123456789, 0.0, 50.0, 0.5), 17.123456789);  // inside: bit-exact
+}
+
+TEST(MirrorEq7, KeepsAnyPositionInsideTheBand) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-500, 500);
+  for (int i = 0; i < 100000; ++i) {
+    const double x = mirror_eq7(u(rng), 0.0, 50.0, 0.5);
+    ASSERT_GE(x, 0.5);
+    ASSERT_LE(x, 49.5);
+  }
+}
+
+TEST(TriangleFold, IsTheUnfoldingOfReflectingWalls) {
+  EXPECT_DOUBLE_EQ(triangle_fold(11.0, 0.0, 10.0), 9.0);
+  EXPECT_DOUBLE_EQ(triangle_fold(-1.0, 0.0, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(triangle_fold(21.0, 0.0, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(triangle_fold(-19.0, 0.0, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(triangle_fold(35.0, 0.0, 10.0), 5.0);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1e4, 1e4);
+  for (int i = 0; i < 100000; ++i) {
+    const double w = u(rng), x = triangle_fold(w, 0.0, 10.0);
+    ASSERT_GE(x, 0.0);
+    ASSERT_LE(x, 10.0);
+    ASSERT_NEAR(x, triangle_fold(w + 20.0, 0.0, 10.0), 1e-9);  // period 2L
+  }
+}
+
+TEST(RobotMotion, NeverLeavesTheMapUnderEitherBoundary) {
+  for (Boundary b : {Boundary::mirror, Boundary::fold}) {
+    RunParams p = small_run(10.0);
+    p.boundary = b;
+    const Environment env = square(10.0);
+    CoverageGrid grid(env, 1.0);
+    RobotMotion robot(p, env, grid);
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> step(-7.0, 7.0);  // steps far longer than the map
+    for (int i = 0; i < 20000; ++i) {
+      robot.move(step(rng), step(rng));
+      const double lo = b == Boundary::mirror ? 0.5 : 0.0, hi = 10.0 - lo;
+      ASSERT_GE(robot.x(), lo);
+      ASSERT_LE(robot.x(), hi);
+      ASSERT_GE(robot.y(), lo);
+      ASSERT_LE(robot.y(), hi);
+    }
+  }
+}
+
+TEST(RobotMotion, PushesOutOfObstaclesByEq8) {
+  RunParams p = small_run(10.0);
+  const Environment env = square(10.0, {{4, 4, 6, 6}});
+  CoverageGrid grid(env, 1.0);
+  p.start_x = 3.0;
+  p.start_y = 5.0;
+  RobotMotion robot(p, env, grid);
+  robot.move(1.2, 0.1);  // lands at (4.2, 5.1): least penetration through the left face
+  EXPECT_DOUBLE_EQ(robot.x(), 3.5);
+  EXPECT_DOUBLE_EQ(robot.y(), 5.1);
+}
+
+// -------------------------------------------------------------- coverage
+
+TEST(CoverageGrid, UsesCeilCellsWithTheLastRowClipped) {
+  const CoverageGrid g(square(50.0), 4.0);
+  EXPECT_EQ(g.nx(), 13);
+  EXPECT_EQ(g.ny(), 13);
+  EXPECT_EQ(g.free_cells(), 169);
+  EXPECT_EQ(g.cell_x(50.0), 12);  // a point on the far wall is in the last cell
+}
+
+TEST(CoverageGrid, ACellIsBlockedWhenItsCentreIsInAnObstacle) {
+  // Covers most of cell (1,1) and slivers of its neighbours: only (1,1)'s
+  // centre (1.5, 1.5) is inside.
+  const CoverageGrid g(square(4.0, {{0.9, 0.9, 2.1, 1.6}}), 1.0);
+  EXPECT_EQ(g.at(1, 1), CoverageGrid::blocked);
+  EXPECT_EQ(g.at(0, 0), CoverageGrid::unvisited);
+  EXPECT_EQ(g.at(2, 1), CoverageGrid::unvisited);
+  EXPECT_EQ(g.free_cells(), 15);
+}
+
+TEST(Supercover, MarksEveryCellOfAnAxisAlignedSegment) {
+  CoverageGrid g(square(5.0), 1.0);
+  g.mark_segment(0.5, 2.5, 4.5, 2.5);
+  EXPECT_EQ(marked_cells(g), (std::set<std::pair<int, int>>{{0, 2}, {1, 2}, {2, 2}, {3, 2}, {4, 2}}));
+}
+
+TEST(Supercover, MarksBothSideCellsThroughACorner) {
+  CoverageGrid g(square(5.0), 1.0);
+  g.mark_segment(0.5, 0.5, 1.5, 1.5);
+  EXPECT_EQ(marked_cells(g), (std::set<std::pair<int, int>>{{0, 0}, {1, 0}, {0, 1}, {1, 1}}));
+}
+
+TEST(Supercover, MarksTheCellsASteepSegmentCrosses) {
+  CoverageGrid g(square(5.0), 1.0);
+  g.mark_segment(1.2, 0.3, 1.9, 3.7);  // stays in column 1 through rows 0..3
+  EXPECT_EQ(marked_cells(g), (std::set<std::pair<int, int>>{{1, 0}, {1, 1}, {1, 2}, {1, 3}}));
+  CoverageGrid h(square(5.0), 1.0);
+  h.mark_segment(0.2, 0.8, 2.8, 1.3);  // crosses x = 1 at y = 0.95, then y = 1 at x = 1.24
+  EXPECT_EQ(marked_cells(h), (std::set<std::pair<int, int>>{{0, 0}, {1, 0}, {1, 1}, {2, 1}}));
+}
+
+TEST(Supercover, EqualsDenseSamplingOnRandomSegments) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(0.0, 20.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    const double x0 = u(rng), y0 = u(rng), x1 = u(rng), y1 = u(rng);
+    CoverageGrid g(square(20.0), 1.5), dense(square(20.0), 1.5);
+    g.mark_segment(x0, y0, x1, y1);
+    for (int k = 0; k <= 200000; ++k) {
+      const double t = k / 200000.0;
+      dense.mark_point(x0 + t * (x1 - x0), y0 + t * (y1 - y0));
+    }
+    // Dense sampling can miss a sliver of a cell, never add one.
+    const auto a = marked_cells(g), b = marked_cells(dense);
+    for (const auto& c : b) ASSERT_TRUE(a.count(c)) << trial;
+    ASSERT_LE(a.size(), b.size() + 2) << trial;
+  }
+}
+
+TEST(Supercover, MarksEachFreeCellOnceAndSkipsBlockedCells) {
+  CoverageGrid g(square(4.0, {{1, 0, 2, 4}}), 1.0);  // column 1 blocked
+  EXPECT_EQ(g.free_cells(), 12);
+  g.mark_segment(0.5, 0.5, 3.5, 0.5);
+  g.mark_segment(3.5, 0.5, 0.5, 0.5);
+  EXPECT_EQ(g.visited_cells(), 3);
+  EXPECT_EQ(g.at(1, 0), CoverageGrid::blocked);
+}
+
+// ---------------------------------------------------- metrics and outcomes
+
+TEST(Metrics, TOptIsTheLawnmowerTime) {
+  EXPECT_DOUBLE_EQ(t_opt(0.9, 2500, 1.0, 1.0), 2250.0);  // Table 1 row 1 reference
+  EXPECT_DOUBLE_EQ(6950.0 / t_opt(0.9, 2500, 1.0, 1.0), 6950.0 / 2250.0);
+  EXPECT_DOUBLE_EQ(t_opt(0.9, 2500, 4.0, 1.0), 562.5);
+}
+
+TEST(Metrics, CellsNeededIsTheSmallestCountReachingDc) {
+  EXPECT_EQ(cells_needed(0.9, 2500), 2250);
+  EXPECT_EQ(cells_needed(0.9, 169), 153);  // 152.1 -> 153
+  EXPECT_EQ(cells_needed(1.0, 7), 7);
+  EXPECT_EQ(cells_needed(0.5, 16), 8);
+}
+
+TEST(Planner, ReportsCoverageTOptAndPrOnATinyMap) {
+  RunParams p = small_run(4.0);
+  p.dc = 0.5;
+  p.fo = 0.25;
+  const RunResult r = run_planner(p, square(4.0));
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_EQ(r.free_cells, 16);
+  EXPECT_GE(r.visited_cells, 8);
+  EXPECT_DOUBLE_EQ(r.final_coverage, r.visited_cells / 16.0);
+  EXPECT_DOUBLE_EQ(r.t_opt, 0.5 * 16 / 1.0);
+  EXPECT_DOUBLE_EQ(r.pr, r.coverage_time / r.t_opt);
+  EXPECT_NEAR(r.coverage_time, r.steps * p.dt, 1e-9);
+  EXPECT_DOUBLE_EQ(r.t_end, r.coverage_time);
+}
+
+TEST(Planner, OriginalArnoldOnTable1Row1EndsOkInThousandsOfSeconds) {
+  RunParams p = small_run(50.0);
+  p.ds_index = 3;
+  const RunResult r = run_planner(p, square(50.0));
+  ASSERT_EQ(r.status, Status::ok);
+  EXPECT_GT(r.coverage_time, 1000.0);
+  EXPECT_LT(r.coverage_time, 45000.0);
+  EXPECT_EQ(r.visited_cells, 2250);
+}
+
+TEST(Planner, IsAPureFunctionOfItsParameters) {
+  RunParams p = small_run(20.0);
+  const RunResult a = run_planner(p, square(20.0)), b = run_planner(p, square(20.0));
+  EXPECT_EQ(a.coverage_time, b.coverage_time);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.final_x, b.final_x);
+  EXPECT_EQ(a.final_y, b.final_y);
+}
+
+TEST(Planner, StartInsideAnObstacleIsInvalid) {
+  RunParams p = small_run(10.0);
+  p.start_x = p.start_y = 5.0;
+  const RunResult r = run_planner(p, square(10.0, {{4, 4, 6, 6}}));
+  EXPECT_EQ(r.status, Status::invalid);
+  EXPECT_NE(r.message.find("inside obstacle #0"), std::string::npos) << r.message;
+}
+
+TEST(Planner, OutOfRangeParameterIsInvalidAndNamed) {
+  RunParams p = small_run(10.0);
+  p.ds_index = 4;
+  const RunResult r = run_planner(p, square(10.0));
+  EXPECT_EQ(r.status, Status::invalid);
+  EXPECT_NE(r.message.find("ds_index"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("[1, 3]"), std::string::npos) << r.message;
+}
+
+TEST(Planner, TimeBudgetEndsTheRunAsTimeout) {
+  RunParams p = small_run(50.0);
+  p.max_time = 30.0;
+  const RunResult r = run_planner(p, square(50.0));
+  EXPECT_EQ(r.status, Status::timeout);
+  EXPECT_TRUE(std::isnan(r.coverage_time));
+  EXPECT_TRUE(std::isnan(r.pr));
+  EXPECT_GE(r.t_end, 30.0);
+  EXPECT_LT(r.t_end, 30.0 + 2 * p.dt);
+}
+
+TEST(Planner, NoNewCellForStuckTimeEndsTheRunAsStuck) {
+  RunParams p = small_run(10.0);
+  p.A = p.B = p.C = 0.0;  // frozen heading: the robot slides along one wall
+  p.stuck_time = 50.0;
+  const RunResult r = run_planner(p, square(10.0));
+  EXPECT_EQ(r.status, Status::stuck);
+  EXPECT_LT(r.t_end, 100.0);
+}
+
+TEST(Planner, StepSizeCollapseEndsTheRunAsDiverged) {
+  RunParams p = small_run(10.0);
+  p.integrator = Integrator::rk4_doubling;
+  p.A = p.B = p.C = 900.0;  // stiff: step doubling never meets ep
+  p.ep = 1e-15;
+  p.dt_min = 0.01;  // 0.1 -> 0.05 -> 0.025 -> 0.0125 -> 0.00625 < dt_min
+  const RunResult r = run_planner(p, square(10.0));
+  EXPECT_EQ(r.status, Status::diverged);
+  EXPECT_EQ(r.dt_halvings, 4);
+  EXPECT_NE(r.message.find("dt_min"), std::string::npos) << r.message;
+}
+
+TEST(Planner, StepDoublingEqualsFixedStepForThePapersParameters) {
+  // SPEC 2: for the paper's parameters doubling never halves dt, so both
+  // integrators give the same run, bit for bit.
+  for (int ds = 1; ds <= 3; ++ds) {
+    RunParams p = small_run(50.0);
+    p.sr = 4.0;
+    p.ds_index = ds;
+    const RunResult fixed = run_planner(p, square(50.0));
+    p.integrator = Integrator::rk4_doubling;
+    const RunResult doubling = run_planner(p, square(50.0));
+    EXPECT_EQ(doubling.dt_halvings, 0);
+    EXPECT_EQ(doubling.status, fixed.status);
+    EXPECT_EQ(doubling.coverage_time, fixed.coverage_time);
+    EXPECT_EQ(doubling.steps, fixed.steps);
+  }
+}
+
+TEST(Planner, StepDoublingHalvesWhenTheToleranceIsTight) {
+  RunParams p = small_run(20.0);
+  p.integrator = Integrator::rk4_doubling;
+  p.ep = 1e-12;
+  p.dc = 0.3;
+  const RunResult r = run_planner(p, square(20.0));
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_GT(r.dt_halvings, 0);
+}
+
+TEST(Planner, ScalingFactorStretchesThePathAtConstantSpeed) {
+  // f scales positions: the heading sequence per step is unchanged, so with a
+  // frozen heading the robot covers f times the distance per step.
+  RunParams p = small_run(50.0);
+  p.A = p.B = p.C = 0.0;
+  p.ic_z = 0.0;  // heading +X
+  p.max_time = 5.95;  // the 20th step ends at t = 6.0
+  p.start_x = 1.0;
+  p.start_y = 25.0;
+  p.f = 3.0;
+  const RunResult r = run_planner(p, square(50.0));
+  EXPECT_EQ(r.steps, 20);            // 6 s of robot time in steps of f*dt = 0.3 s
+  EXPECT_NEAR(r.final_x, 7.0, 1e-9);  // moved v * t = 6 m
+}
+
+TEST(Planner, PointSamplingNeverCoversMoreThanSegments) {
+  RunParams p = small_run(50.0);
+  p.f = 6.0;
+  p.max_time = 2000.0;
+  p.dc = 1.0;
+  const RunResult seg = run_planner(p, square(50.0));
+  p.sampling = Sampling::points;
+  const RunResult pts = run_planner(p, square(50.0));
+  EXPECT_LT(pts.visited_cells, seg.visited_cells);
+}

@@ -1,0 +1,37 @@
+#pragma once
+// Shared by the test executables: scratch directories, files, and running the
+// chaosweep binary as a user would.
+#include <filesystem>
+#include <string>
+
+#include "run_params.hpp"
+
+namespace chaosweep::test {
+
+// A fresh directory under the system temp dir, removed at scope exit.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+void write_file(const std::string& path, const std::string& text);
+std::string read_file(const std::string& path);
+
+struct CommandResult {
+  int exit_code;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+// Runs the built chaosweep binary with `args` (a shell-quoted string).
+CommandResult run_chaosweep(const std::string& args);
+
+// A small, fast, valid Arnold run: a `side` m map with 1 m cells.
+RunParams small_run(double side = 10.0);
+
+}  // namespace chaosweep::test
