@@ -42,6 +42,8 @@ std::string SweepSummary::text() const {
                 (long long)count(Status::diverged), (long long)count(Status::invalid),
                 (long long)count(Status::error));
   s += buf;
+  if (count(Status::timeout) + count(Status::stuck) > 0)
+    s += "            (timeout/stuck: coverage stalled below dc within the budget, e.g. a regular orbit)\n";
   if (ok_times_.empty()) {
     s += "coverage time: no run reached the desired coverage\n";
   } else {
