@@ -68,13 +68,13 @@ void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw) {
   }
 }
 
-void apply_param_flags(const std::map<std::string, std::string>& raw, RunParams& p, std::string& env) {
+void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& run) {
   // Aliases first so that an explicit --size-x etc. wins over --size.
   for (const char* alias : {"env", "size", "start", "ic"}) {
     auto it = raw.find(alias);
     if (it == raw.end()) continue;
     try {
-      apply_setting(p, env, it->first, parse_flag_value(it->first, it->second));
+      apply_setting(run, it->first, parse_flag_value(it->first, it->second));
     } catch (const SpecError& e) {
       throw SpecError(flag_of(it->first) + ": " + e.what());
     }
@@ -82,7 +82,7 @@ void apply_param_flags(const std::map<std::string, std::string>& raw, RunParams&
   for (const auto& [key, text] : raw) {
     if (key == "env" || key == "size" || key == "start" || key == "ic") continue;
     try {
-      apply_setting(p, env, key, parse_flag_value(key, text));
+      apply_setting(run, key, parse_flag_value(key, text));
     } catch (const SpecError& e) {
       const std::string msg = e.what();
       throw SpecError(msg.rfind("--", 0) == 0 ? msg : flag_of(key) + ": " + msg);

@@ -19,7 +19,7 @@ inline constexpr int exit_ok = 0, exit_bad_input = 2, exit_failure = 3;
 void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw);
 
 // Applies raw flag values; throws SpecError naming the flag.
-void apply_param_flags(const std::map<std::string, std::string>& raw, RunParams& p, std::string& env);
+void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& run);
 
 std::string host_name();
 std::string utc_now();  // ISO 8601

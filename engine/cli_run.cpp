@@ -7,6 +7,7 @@
 #include "cli_subcommands.hpp"
 #include "json_writer.hpp"
 #include "run_tuple.hpp"
+#include "trace_writer.hpp"
 
 namespace chaosweep {
 
@@ -46,23 +47,41 @@ void add_run_command(CLI::App& app, std::function<int()>& action) {
       "Example: chaosweep run --planner arnold --size 50 --sr 1 --ds-index 3 --start 0.5,0.5 --json");
   auto raw = std::make_shared<std::map<std::string, std::string>>();
   auto json = std::make_shared<bool>(false);
+  auto trace_path = std::make_shared<std::string>();
   add_param_flags(*cmd, *raw);
   cmd->add_flag("--json", *json, "print one JSON object with every input and output");
-  cmd->callback([cmd, raw, json, &action] {
-    (void)cmd;
-    action = [raw, json]() -> int {
-      RunParams p;
-      std::string env = "empty";
+  cmd->add_option("--trace", *trace_path,
+                  "write the trajectory as CSV (t, x, y, kind, ds_index; kind is start, arnold, "
+                  "transit or logistic)")
+      ->type_name("FILE");
+  cmd->callback([raw, json, trace_path, &action] {
+    action = [raw, json, trace_path]() -> int {
+      RunSpec spec;
       RunTuple tuple;
       try {
-        apply_param_flags(*raw, p, env);
+        apply_param_flags(*raw, spec);
         EnvironmentCache cache;
-        tuple = resolve_run(0, p, env, cache);
+        tuple = resolve_run(0, spec, cache);
       } catch (const std::exception& e) {
         std::cerr << "chaosweep run: " << e.what() << "\n";
         return exit_bad_input;
       }
-      const RunRow row = evaluate(tuple);
+      std::unique_ptr<CsvTraceWriter> trace;
+      try {
+        if (!trace_path->empty()) trace = std::make_unique<CsvTraceWriter>(*trace_path);
+      } catch (const std::exception& e) {
+        std::cerr << "chaosweep run: --trace: " << e.what() << "\n";
+        return exit_failure;
+      }
+      const RunRow row = evaluate(tuple, trace.get());
+      if (trace) {
+        try {
+          trace->close();
+        } catch (const std::exception& e) {
+          std::cerr << "chaosweep run: --trace: " << e.what() << "\n";
+          return exit_failure;
+        }
+      }
       if (*json) std::cout << row_to_json(row) << "\n";
       else print_readable(row);
       if (row.result.status == Status::invalid) {

@@ -4,7 +4,11 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <cmath>
+#include <optional>
 #include <toml++/toml.h>
+
+#include "clutter.hpp"
 
 namespace chaosweep {
 
@@ -31,7 +35,8 @@ std::pair<double, double> pair_of(const toml::node& n, const std::string& file, 
   return {number(*a->get(0), file, key), number(*a->get(1), file, key)};
 }
 
-Environment parse_file(const std::string& path, double size_x, double size_y) {
+Environment parse_file(const std::string& path, double size_x, double size_y,
+                       std::optional<std::uint64_t> clutter_seed) {
   toml::table t;
   try {
     t = toml::parse_file(path);
@@ -54,9 +59,10 @@ Environment parse_file(const std::string& path, double size_x, double size_y) {
         fail(path, "'units' must be \"relative\" (fractions of the map side) or \"m\"");
       relative = *u == "relative";
     } else if (key != "size" && key != "start" && key != "start_units" && key != "obstacles" &&
-               key != "description") {
+               key != "description" && key != "clutter") {
       fail(path, "unknown key '" + key +
-                     "' (allowed: name, description, units, size, start, start_units, obstacles)");
+                     "' (allowed: name, description, units, size, start, start_units, obstacles, "
+                     "clutter)");
     }
   }
   if (const toml::node* s = t.get("size")) {
@@ -105,6 +111,40 @@ Environment parse_file(const std::string& path, double size_x, double size_y) {
       env.obstacles.push_back({v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy});
     }
   }
+  if (const toml::node* c = t.get("clutter")) {
+    const toml::table* ct = c->as_table();
+    if (!ct) fail(path, "'clutter' must be a table {seed, occupancy, min_side, max_side, gap}");
+    ClutterSpec spec;
+    const double unit = relative ? std::min(env.lx, env.ly) : 1.0;
+    spec.min_side = 0.03 * (relative ? unit : 50.0);
+    spec.max_side = 0.08 * (relative ? unit : 50.0);
+    spec.gap = 0.02 * (relative ? unit : 50.0);
+    for (auto&& [k, node] : *ct) {
+      const std::string key(k.str()), where = "clutter." + key;
+      const double v = number(node, path, where);
+      if (key == "seed") {
+        if (!(v >= 0 && v == std::floor(v))) fail(path, where + " must be a whole number >= 0");
+        spec.seed = std::uint64_t(v);
+      } else if (key == "occupancy") {
+        if (!(v >= 0 && v <= 0.6)) fail(path, where + " must be in [0, 0.6]");
+        spec.occupancy = v;
+      } else if (key == "min_side" || key == "max_side" || key == "gap") {
+        if (!(v >= 0)) fail(path, where + " must be >= 0");
+        (key == "min_side" ? spec.min_side : key == "max_side" ? spec.max_side : spec.gap) = v * unit;
+      } else {
+        fail(path, "unknown key '" + where + "' (allowed: seed, occupancy, min_side, max_side, gap)");
+      }
+    }
+    if (!(spec.min_side > 0 && spec.max_side >= spec.min_side))
+      fail(path, "clutter needs 0 < min_side <= max_side");
+    if (clutter_seed) spec.seed = *clutter_seed;
+    const auto start = env.start.value_or(std::pair{0.5, 0.5});
+    for (const Rect& r : generate_clutter(env.lx, env.ly, spec, start.first, start.second))
+      env.obstacles.push_back(r);
+    env.name += ":" + std::to_string(spec.seed);
+  } else if (clutter_seed) {
+    fail(path, "':SEED' is only for environments with a 'clutter' table");
+  }
   return env;
 }
 
@@ -133,13 +173,23 @@ Environment load_environment(const std::string& spec, double size_x, double size
     env.ly = size_y;
     return env;
   }
-  const bool is_path = spec.find('/') != std::string::npos || spec.ends_with(".toml");
-  const std::string path = is_path ? spec : find_environment_file(spec);
+  // "NAME:SEED" picks the clutter seed of a generated environment.
+  std::string base = spec;
+  std::optional<std::uint64_t> seed;
+  if (const auto colon = spec.rfind(':'); colon != std::string::npos) {
+    const std::string digits = spec.substr(colon + 1);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 18)
+      throw std::runtime_error("environment '" + spec + "': the part after ':' must be a clutter seed (digits)");
+    seed = std::stoull(digits);
+    base = spec.substr(0, colon);
+  }
+  const bool is_path = base.find('/') != std::string::npos || base.ends_with(".toml");
+  const std::string path = is_path ? base : find_environment_file(base);
   if (path.empty() || !fs::exists(path))
     throw std::runtime_error("environment '" + spec +
                              "' not found: give a path to a .toml file, \"empty\", or a name "
                              "from experiments/envs/");
-  return parse_file(path, size_x, size_y);
+  return parse_file(path, size_x, size_y, seed);
 }
 
 std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x,

@@ -22,6 +22,8 @@ std::vector<Column> make_columns() {
   std::vector<Column> c;
   c.push_back(i64("run_id", [](const RunRow& r) { return r.tuple.run_id; }));
   c.push_back(text("env", 64, [](const RunRow& r) { return r.tuple.env_spec; }));
+  c.push_back(text("label", 48, [](const RunRow& r) { return r.tuple.label; }));
+  c.push_back(text("variant", 48, [](const RunRow& r) { return variant_name(r.tuple.params); }));
   // Every run parameter, named as in the parameter table.
   for (const ParamInfo& p : param_table()) {
     const ParamInfo* info = &p;
@@ -58,6 +60,14 @@ std::vector<Column> make_columns() {
   c.push_back(i64("dt_halvings", [](const RunRow& r) { return r.result.dt_halvings; }));
   c.push_back(f64("final_x", [](const RunRow& r) { return r.result.final_x; }));
   c.push_back(f64("final_y", [](const RunRow& r) { return r.result.final_y; }));
+  c.push_back(i64("segments", [](const RunRow& r) { return r.result.segments; }));
+  c.push_back(i64("index_switches", [](const RunRow& r) { return r.result.index_switches; }));
+  c.push_back(i64("zonings", [](const RunRow& r) { return r.result.zonings; }));
+  c.push_back(i64("transits", [](const RunRow& r) { return r.result.transits; }));
+  c.push_back(i64("zones_dropped", [](const RunRow& r) { return r.result.zones_dropped; }));
+  c.push_back(i64("transit_points", [](const RunRow& r) { return r.result.transit_points; }));
+  c.push_back(i64("transit_attempts", [](const RunRow& r) { return r.result.transit_attempts; }));
+  c.push_back(i64("final_ds_index", [](const RunRow& r) { return std::int64_t(r.result.final_ds_index); }));
   c.push_back(text("message", 160, [](const RunRow& r) { return r.result.message; }));
   c.push_back(f64("wall_time", [](const RunRow& r) { return r.result.wall_time; }, false));
   return c;

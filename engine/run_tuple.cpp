@@ -7,13 +7,13 @@
 
 namespace chaosweep {
 
-RunTuple resolve_run(std::int64_t run_id, const RunParams& p, const std::string& env_spec,
-                     EnvironmentCache& cache) {
+RunTuple resolve_run(std::int64_t run_id, const RunSpec& spec, EnvironmentCache& cache) {
   RunTuple t;
   t.run_id = run_id;
-  t.env_spec = env_spec;
-  t.params = p;
-  t.env = cache.get(env_spec, p.size_x, p.size_y);
+  t.env_spec = spec.env;
+  t.label = spec.label;
+  t.params = spec.params;
+  t.env = cache.get(spec.env, spec.params.size_x, spec.params.size_y);
   t.params.size_x = t.env->lx;
   t.params.size_y = t.env->ly;
   if (std::isnan(t.params.start_x) || std::isnan(t.params.start_y)) {
@@ -24,11 +24,11 @@ RunTuple resolve_run(std::int64_t run_id, const RunParams& p, const std::string&
   return t;
 }
 
-RunRow evaluate(const RunTuple& t) {
+RunRow evaluate(const RunTuple& t, TraceSink* trace) {
   RunRow row{t, {}};
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    row.result = run_planner(t.params, *t.env);
+    row.result = run_planner(t.params, *t.env, trace);
   } catch (const std::exception& e) {
     row.result = RunResult{};
     row.result.status = Status::error;

@@ -9,12 +9,15 @@
 #include "environment.hpp"
 #include "environment_loader.hpp"
 #include "run_params.hpp"
+#include "sweep_spec.hpp"
+#include "trace.hpp"
 
 namespace chaosweep {
 
 struct RunTuple {
   std::int64_t run_id = 0;
   std::string env_spec = "empty";  // as the user wrote it: a name or a path
+  std::string label;               // the spec's free-text case name
   RunParams params;
   std::shared_ptr<const Environment> env;
 };
@@ -29,10 +32,9 @@ struct RunRow {
 inline constexpr double default_start = 0.5;
 
 // Loads the environment and fills the map size and an unset start from it.
-RunTuple resolve_run(std::int64_t run_id, const RunParams& p, const std::string& env_spec,
-                     EnvironmentCache& cache);
+RunTuple resolve_run(std::int64_t run_id, const RunSpec& spec, EnvironmentCache& cache);
 
 // Runs the kernel, timing it; never throws (an exception becomes status error).
-RunRow evaluate(const RunTuple& t);
+RunRow evaluate(const RunTuple& t, TraceSink* trace = nullptr);
 
 }  // namespace chaosweep

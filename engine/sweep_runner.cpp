@@ -8,11 +8,9 @@
 namespace chaosweep {
 
 void preload_environments(const SweepSpec& spec, EnvironmentCache& cache) {
-  RunParams p;
-  std::string env;
   for (std::int64_t i = 0; i < spec.size(); ++i) {
-    spec.run_settings(i, p, env);
-    cache.get(env, p.size_x, p.size_y);
+    const RunSpec r = spec.run(i);
+    cache.get(r.env, r.params.size_x, r.params.size_y);
   }
 }
 
@@ -28,12 +26,8 @@ void run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& si
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1),
                         [&](const tbb::blocked_range<std::int64_t>& r) {
-                          RunParams p;
-                          std::string env;
-                          for (std::int64_t k = r.begin(); k != r.end(); ++k) {
-                            spec.run_settings(first + k, p, env);
-                            rows[std::size_t(k)] = evaluate(resolve_run(first + k, p, env, cache));
-                          }
+                          for (std::int64_t k = r.begin(); k != r.end(); ++k)
+                            rows[std::size_t(k)] = evaluate(resolve_run(first + k, spec.run(first + k), cache));
                         });
     });
     sink(rows);

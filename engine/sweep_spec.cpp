@@ -116,16 +116,21 @@ std::string to_text(const SpecValue& v) {
 }
 
 std::string known_keys() {
-  std::string s = "env, size, start, ic";
+  std::string s = "env, label, size, start, ic";
   for (const ParamInfo& p : param_table()) s += ", " + std::string(p.name);
   return s;
 }
 
-void apply_setting(RunParams& p, std::string& env, const std::string& key, const SpecValue& v) {
+void apply_setting(RunSpec& r, const std::string& key, const SpecValue& v) {
+  RunParams& p = r.params;
   if (key == "env") {
     const auto* s = std::get_if<std::string>(&v);
     if (!s || s->empty()) throw SpecError("env must be an environment name or a path to a .toml file");
-    env = *s;
+    r.env = *s;
+  } else if (key == "label") {
+    if (const auto* s = std::get_if<std::string>(&v)) r.label = *s;
+    else if (const double* d = std::get_if<double>(&v)) r.label = fmt(*d);
+    else throw SpecError("label must be a string or a number");
   } else if (key == "size") {
     if (std::holds_alternative<double>(v)) {
       set_param(p, "size_x", v);
@@ -149,110 +154,222 @@ void apply_setting(RunParams& p, std::string& env, const std::string& key, const
   }
 }
 
+std::string Axis::name() const {
+  if (kind == "axis") return keys[0];
+  std::string s = kind + "(";
+  for (std::size_t k = 0; k < keys.size(); ++k) s += (k ? ", " : "") + keys[k];
+  return s + ")";
+}
+
 std::int64_t SweepSpec::size() const {
   std::int64_t n = 1;
-  for (const Axis& a : axes) n *= std::int64_t(a.values.size());
+  for (const Axis& a : axes) n *= std::int64_t(a.size());
   return n;
 }
 
-void SweepSpec::run_settings(std::int64_t i, RunParams& p, std::string& env) const {
-  p = base;
-  env = base_env;
-  // Mixed radix, last axis fastest.
+RunSpec SweepSpec::run(std::int64_t i) const {
+  RunSpec r = base;
+  // Mixed radix, last axis fastest; each axis sets its keys in order.
+  std::vector<std::size_t> pos(axes.size());
   for (std::size_t k = axes.size(); k-- > 0;) {
-    const auto n = std::int64_t(axes[k].values.size());
-    apply_setting(p, env, axes[k].key, axes[k].values[std::size_t(i % n)]);
+    const auto n = std::int64_t(axes[k].size());
+    pos[k] = std::size_t(i % n);
     i /= n;
+  }
+  for (std::size_t k = 0; k < axes.size(); ++k)
+    for (const auto& [key, value] : axes[k].values[pos[k]]) apply_setting(r, key, value);
+  return r;
+}
+
+namespace {
+
+// Values of one key in [axes] or a zip group: a list, or a range table.
+std::vector<SpecValue> axis_values(const toml::node& node, const std::string& where) {
+  std::vector<SpecValue> values;
+  if (const toml::array* arr = node.as_array()) {
+    for (std::size_t i = 0; i < arr->size(); ++i)
+      values.push_back(to_value(*arr->get(i), where + "[" + std::to_string(i) + "]"));
+  } else if (const toml::table* r = node.as_table()) {
+    values = expand_range(*r, where);
+  } else {
+    fail(where, "must be a list of values or a range {start, stop, step|num}");
+  }
+  if (values.empty()) fail(where, "is empty: an axis needs at least one value");
+  return values;
+}
+
+// Checks every value of an axis now, so a bad value fails before any run.
+void check_axis(const Axis& axis, const RunSpec& base, const std::string& where) {
+  for (std::size_t i = 0; i < axis.size(); ++i) {
+    RunSpec scratch = base;
+    for (const auto& [key, value] : axis.values[i]) {
+      try {
+        apply_setting(scratch, key, value);
+      } catch (const SpecError& e) {
+        const std::string at = axis.kind == "axis"   ? where + "[" + std::to_string(i) + "]"
+                               : axis.kind == "zip" ? where + "." + key + "[" + std::to_string(i) + "]"
+                                                    : where + "[" + std::to_string(i) + "]." + key;
+        fail(at, e.what());
+      }
+    }
   }
 }
 
-SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name) {
-  toml::table root;
+toml::table parse_toml(const std::string& text, const std::string& source_name) {
   try {
-    root = toml::parse(text, source_name);
+    return toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
     std::ostringstream os;
     os << e.description() << " (line " << e.source().begin.line << ")";
     fail(source_name, os.str());
   }
+}
+
+std::string read_text(const std::string& path, const std::string& what) {
+  std::ifstream in(path);
+  if (!in) throw SpecError(path + ": cannot open " + what);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name, const std::string& dir) {
+  toml::table root = parse_toml(text, source_name);
   SweepSpec spec;
-  spec.text = text;
   for (auto&& [k, node] : root) {
     const std::string key(k.str());
-    if (key != "sweep" && key != "fixed" && key != "axes")
-      fail(source_name, "unknown section '" + key + "' (allowed: [sweep], [fixed], [axes])");
-    if (!node.is_table()) fail(source_name, "'" + key + "' must be a table");
+    if (key == "zip") {
+      if (!node.is_array_of_tables()) fail(source_name, "'zip' must be written as [[zip]] tables");
+    } else if (key == "case") {
+      if (!node.is_array_of_tables()) fail(source_name, "'case' must be written as [[case]] tables");
+    } else if (key != "sweep" && key != "fixed" && key != "axes") {
+      fail(source_name, "unknown section '" + key + "' (allowed: [sweep], [fixed], [axes], [[zip]], [[case]])");
+    } else if (!node.is_table()) {
+      fail(source_name, "'" + key + "' must be a table");
+    }
   }
   if (const toml::table* s = root["sweep"].as_table()) {
     for (auto&& [k, node] : *s) {
       const std::string key(k.str());
-      if (key == "name" || key == "description") {
+      if (key == "name" || key == "description" || key == "extends") {
         if (!node.is_string()) fail(source_name, "sweep." + key + " must be a string");
-        (key == "name" ? spec.name : spec.description) = *node.value<std::string>();
       } else {
-        fail(source_name, "unknown key 'sweep." + key + "' (allowed: name, description)");
+        fail(source_name, "unknown key 'sweep." + key + "' (allowed: name, description, extends)");
       }
     }
+    if (auto n = (*s)["name"].value<std::string>()) spec.name = *n;
+    if (auto d = (*s)["description"].value<std::string>()) spec.description = *d;
+    if (auto e = (*s)["extends"].value<std::string>()) {
+      // Start from another spec: its fixed settings and axes come first.
+      const std::string path = e->starts_with("/") ? *e : dir + "/" + *e;
+      const std::string parent_text = read_text(path, "the spec named by sweep.extends");
+      const auto slash = path.find_last_of('/');
+      SweepSpec parent = parse_sweep_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash));
+      spec.base = parent.base;
+      spec.axes = parent.axes;
+      if (spec.description.empty()) spec.description = parent.description;
+      spec.text = "# --- extends " + *e + " ---\n" + parent.text + "# --- " + source_name + " ---\n";
+    }
   }
-  std::set<std::string> fixed_keys;
+  spec.text += text;
+  std::set<std::string> used;  // keys already given an axis
+  for (const Axis& a : spec.axes) used.insert(a.keys.begin(), a.keys.end());
+
   if (const toml::table* f = root["fixed"].as_table()) {
     for (auto&& [k, node] : *f) {
       const std::string key(k.str());
       const std::string where = source_name + ": fixed." + key;
+      if (used.count(key)) fail(where, "is also an axis of the extended spec");
       try {
-        apply_setting(spec.base, spec.base_env, key, to_value(node, where));
+        apply_setting(spec.base, key, to_value(node, where));
       } catch (const SpecError& e) {
         fail(where, e.what());
       }
-      fixed_keys.insert(key);
     }
+    for (auto&& [k, node] : *f) used.insert(std::string(k.str()));
   }
+  std::vector<std::pair<std::uint32_t, Axis>> ordered;
   if (const toml::table* a = root["axes"].as_table()) {
-    std::vector<std::pair<std::uint32_t, Axis>> ordered;
     for (auto&& [k, node] : *a) {
-      Axis axis{std::string(k.str()), {}};
-      const std::string where = source_name + ": axes." + axis.key;
-      if (fixed_keys.count(axis.key)) fail(where, "is also in [fixed]; give it in one place");
-      if (const toml::array* arr = node.as_array()) {
-        for (std::size_t i = 0; i < arr->size(); ++i)
-          axis.values.push_back(to_value(*arr->get(i), where + "[" + std::to_string(i) + "]"));
-      } else if (const toml::table* r = node.as_table()) {
-        axis.values = expand_range(*r, where);
-      } else {
-        fail(where, "must be a list of values or a range {start, stop, step|num}");
-      }
-      if (axis.values.empty()) fail(where, "is empty: an axis needs at least one value");
-      // Check every value now, so a bad value fails before any run starts.
-      RunParams scratch = spec.base;
-      std::string env = spec.base_env;
-      for (std::size_t i = 0; i < axis.values.size(); ++i) {
-        try {
-          apply_setting(scratch, env, axis.key, axis.values[i]);
-        } catch (const SpecError& e) {
-          fail(where + "[" + std::to_string(i) + "]", e.what());
-        }
-      }
+      const std::string key(k.str());
+      const std::string where = source_name + ": axes." + key;
+      if (used.count(key)) fail(where, "is also in [fixed] or another axis; give it in one place");
+      used.insert(key);
+      Axis axis{"axis", {key}, {}};
+      for (SpecValue& v : axis_values(node, where)) axis.values.push_back({{key, std::move(v)}});
+      check_axis(axis, spec.base, where);
       ordered.emplace_back(node.source().begin.line, std::move(axis));
     }
-    // toml++ keeps keys sorted; restore the order the user wrote.
-    std::stable_sort(ordered.begin(), ordered.end(),
-                     [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (auto& [line, axis] : ordered) spec.axes.push_back(std::move(axis));
   }
+  if (const toml::array* zips = root["zip"].as_array()) {
+    for (std::size_t z = 0; z < zips->size(); ++z) {
+      const toml::table& t = *zips->get(z)->as_table();
+      const std::string where = source_name + ": zip[" + std::to_string(z) + "]";
+      Axis axis{"zip", {}, {}};
+      std::vector<std::pair<std::uint32_t, std::pair<std::string, std::vector<SpecValue>>>> cols;
+      for (auto&& [k, node] : t) {
+        const std::string key(k.str());
+        if (used.count(key)) fail(where + "." + key, "is also in [fixed] or another axis; give it in one place");
+        used.insert(key);
+        cols.push_back({node.source().begin.line, {key, axis_values(node, where + "." + key)}});
+      }
+      if (cols.empty()) fail(where, "is empty");
+      std::stable_sort(cols.begin(), cols.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      const std::size_t n = cols[0].second.second.size();
+      for (const auto& [line, col] : cols) {
+        if (col.second.size() != n)
+          fail(where, "lists must have equal lengths: '" + cols[0].second.first + "' has " + std::to_string(n) +
+                          ", '" + col.first + "' has " + std::to_string(col.second.size()));
+        axis.keys.push_back(col.first);
+      }
+      axis.values.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        for (const auto& [line, col] : cols) axis.values[i].emplace_back(col.first, col.second[i]);
+      check_axis(axis, spec.base, where);
+      ordered.emplace_back(t.source().begin.line, std::move(axis));
+    }
+  }
+  // [[case]] tables: one axis whose positions are the cases, in file order.
+  if (const toml::array* cases = root["case"].as_array()) {
+    Axis axis{"case", {}, {}};
+    std::set<std::string> keys;
+    for (std::size_t i = 0; i < cases->size(); ++i) {
+      const toml::table& t = *cases->get(i)->as_table();
+      const std::string where = source_name + ": case[" + std::to_string(i) + "]";
+      std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::string, SpecValue>>> items;
+      for (auto&& [k, node] : t) {
+        const std::string key(k.str());
+        if (used.count(key)) fail(where + "." + key, "is also in [fixed] or another axis; give it in one place");
+        keys.insert(key);
+        items.push_back({{node.source().begin.line, node.source().begin.column},
+                         {key, to_value(node, where + "." + key)}});
+      }
+      std::stable_sort(items.begin(), items.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      Settings settings;
+      for (auto& [col, kv] : items) settings.push_back(std::move(kv));
+      axis.values.push_back(std::move(settings));
+    }
+    axis.keys.assign(keys.begin(), keys.end());
+    check_axis(axis, spec.base, source_name + ": case");
+    if (!axis.values.empty()) ordered.emplace_back(cases->source().begin.line, std::move(axis));
+  }
+  // toml++ keeps keys sorted; restore the order the user wrote.
+  std::stable_sort(ordered.begin(), ordered.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (auto& [line, axis] : ordered) spec.axes.push_back(std::move(axis));
+
   double total = 1;
-  for (const Axis& a : spec.axes) total *= double(a.values.size());
+  for (const Axis& a : spec.axes) total *= double(a.size());
   if (total > max_runs) fail(source_name, "expands to " + fmt(total) + " runs (more than 1e12)");
   return spec;
 }
 
 SweepSpec load_sweep_spec(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SpecError(path + ": cannot open the sweep spec");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  SweepSpec s = parse_sweep_spec(ss.str(), path);
+  const auto slash = path.find_last_of('/');
+  SweepSpec s = parse_sweep_spec(read_text(path, "the sweep spec"), path,
+                                 slash == std::string::npos ? "." : path.substr(0, slash));
   if (s.name.empty()) {
-    const auto slash = path.find_last_of('/');
     std::string stem = path.substr(slash == std::string::npos ? 0 : slash + 1);
     s.name = stem.substr(0, stem.rfind('.'));
   }

@@ -1,7 +1,8 @@
 #pragma once
-// A sweep spec (TOML): fixed parameters plus axes whose Cartesian product is
-// the set of runs. run_id = index in the expansion, the first axis varying
-// slowest, axes in file order. See experiments/README.md for the format.
+// A sweep spec (TOML): fixed settings, axes whose Cartesian product is the
+// set of runs, and zip groups (lists that advance together, e.g. the rows of
+// a paper's table). run_id = index in the expansion, the first axis varying
+// slowest, axes in file order. See README.md, "Sweep specs".
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -20,30 +21,45 @@ struct SpecError : std::runtime_error {
 using SpecValue = std::variant<double, std::string, std::vector<double>>;
 std::string to_text(const SpecValue& v);
 
+// What one run is before its environment is loaded.
+struct RunSpec {
+  RunParams params;
+  std::string env = "empty";
+  std::string label;  // free text naming the run's case (e.g. a Table 1 row)
+};
+
+// The settings an axis applies at one of its positions.
+using Settings = std::vector<std::pair<std::string, SpecValue>>;
+
+// An axis: one key (a plain axis), several advancing together (a [[zip]]
+// group), or a list of cases ([[case]] tables, one position each).
 struct Axis {
-  std::string key;
-  std::vector<SpecValue> values;
+  std::string kind = "axis";      // "axis", "zip" or "case"
+  std::vector<std::string> keys;  // every key the axis sets
+  std::vector<Settings> values;   // values[i]: the settings of position i
+  std::size_t size() const { return values.size(); }
+  std::string name() const;  // "A", "zip(size, sr)" or "case(label, size, ...)"
 };
 
 struct SweepSpec {
   std::string name;
   std::string description;
-  std::string text;  // the spec as written, for provenance
-  RunParams base;
-  std::string base_env = "empty";
+  std::string text;  // the spec as written (with any extended spec), for provenance
+  RunSpec base;
   std::vector<Axis> axes;
 
   std::int64_t size() const;
-  // Parameters and environment of run i (0 <= i < size()).
-  void run_settings(std::int64_t i, RunParams& p, std::string& env) const;
+  RunSpec run(std::int64_t i) const;  // 0 <= i < size()
 };
 
-SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name);
+// `source_name` is used in messages; `dir` resolves `extends`.
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name,
+                           const std::string& dir = ".");
 SweepSpec load_sweep_spec(const std::string& path);
 
-// Sets `key` (a parameter name, or the aliases size, start, ic, env) to v.
+// Sets `key` (a parameter name, or size, start, ic, env, label) to v.
 // Throws SpecError naming the key and its allowed values.
-void apply_setting(RunParams& p, std::string& env, const std::string& key, const SpecValue& v);
+void apply_setting(RunSpec& r, const std::string& key, const SpecValue& v);
 
 // Keys apply_setting accepts, for messages.
 std::string known_keys();

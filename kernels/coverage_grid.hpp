@@ -16,6 +16,7 @@ class CoverageGrid {
   CoverageGrid(const Environment& env, double cell_size);
 
   int nx() const { return nx_; }
+  double cell_size() const { return cell_; }
   int ny() const { return ny_; }
   int free_cells() const { return free_; }
   int visited_cells() const { return visited_; }
@@ -28,10 +29,24 @@ class CoverageGrid {
   int cell_y(double y) const { return clamp_index(y * inv_cell_, ny_); }
 
   void mark_cell(int i, int j) {
-    std::uint8_t& c = cells_[std::size_t(j) * nx_ + i];
+    const std::size_t k = std::size_t(j) * nx_ + i;
+    std::uint8_t& c = cells_[k];
+    if (!stamp_.empty() && c != blocked && stamp_[k] != window_) {
+      stamp_[k] = window_;
+      ++window_distinct_;
+    }
     visited_ += (c == unvisited);
     c = c == unvisited ? std::uint8_t(visited) : c;
   }
+
+  // Eq. 5 needs the distinct free cells touched in a window (a segment), new
+  // or repeated. Counting starts with the first begin_window().
+  void begin_window() {
+    if (stamp_.empty()) stamp_.assign(cells_.size(), 0);
+    ++window_;
+    window_distinct_ = 0;
+  }
+  int window_distinct() const { return window_distinct_; }
   void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
   // Supercover: every cell the closed segment touches, including both side
   // cells where it passes exactly through a grid corner.
@@ -47,6 +62,9 @@ class CoverageGrid {
   int nx_, ny_, free_ = 0, visited_ = 0;
   double cell_, inv_cell_;
   std::vector<std::uint8_t> cells_;
+  std::vector<std::uint32_t> stamp_;  // window id of each cell's last touch
+  std::uint32_t window_ = 0;
+  int window_distinct_ = 0;
 };
 
 }  // namespace chaosweep

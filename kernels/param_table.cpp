@@ -1,4 +1,5 @@
 #include "param_table.hpp"
+#include "trace.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -19,7 +20,7 @@ using Kind = ParamInfo::Kind;
   ParamInfo {                                                                   \
     #field, help, Kind::integer, lo, hi, false, {},                             \
         [](const RunParams& p) { return double(p.field); },                     \
-        [](RunParams& p, double v) { p.field = int(v); }                        \
+        [](RunParams& p, double v) { p.field = decltype(p.field)(v); }                     \
   }
 #define CW_CHOICE(field, type, help, ...)                                       \
   ParamInfo {                                                                   \
@@ -30,7 +31,24 @@ using Kind = ParamInfo::Kind;
 
 std::vector<ParamInfo> make_table() {
   std::vector<ParamInfo> t = {
-      CW_CHOICE(planner, Planner, "planner family", "arnold"),
+      CW_CHOICE(planner, Planner, "planner: Arnold flow (with the switches below) or Logistic map only",
+                "arnold", "logistic"),
+      CW_INT(index_switching, 0, 1, "orientation control: 1 switches DSindex when coverage stalls"),
+      CW_INT(switch_min_new, 0, 1e9, "a segment adding at most this many cells counts as stalled"),
+      CW_INT(map_zoning, 0, 1, "map zoning: 1 runs MapZoning when Eq. 5 fails"),
+      CW_REAL(c, 0, 1e3, false, "Eq. 5 coefficient c"),
+      CW_INT(zones_x, 1, 1000, "MapZoning zones along X"),
+      CW_INT(zones_y, 1, 1000, "MapZoning zones along Y"),
+      CW_CHOICE(zone_goal, ZoneGoal,
+                "transit goal: the zone midpoint, or (free) the nearest free cell when the midpoint "
+                "is within fo of an obstacle",
+                "free", "midpoint"),
+      CW_INT(th, 0, 1e9, "transit attempts per zone (0: 10 * L / 50)"),
+      CW_INT(dnh, 0, 1e9, "th grows by dnh when every zone failed"),
+      CW_REAL(dt_c, 1e-6, 10, false, "transit / Logistic step, s"),
+      CW_REAL(logistic_r, 0, 4, false, "Logistic map parameter r"),
+      CW_REAL(logistic_x0, 0, 1, false, "Logistic map initial state"),
+      CW_REAL(ic_jitter, 0, 1, false, "perturb ic uniformly in +-ic_jitter (seeded by seed)"),
       CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
       CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
       CW_REAL(C, -1e3, 1e3, false, "Arnold coefficient C"),
@@ -62,6 +80,7 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(stuck_time, 0, 1e10, false,
               "end as stuck after this long without a new cell, s (0: never)"),
       CW_INT(niter, 1, 1e9, "points per segment (SystemScaler call)"),
+      CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter)"),
   };
   return t;
 }
@@ -118,10 +137,33 @@ std::string check_ranges(const RunParams& p) {
   return {};
 }
 
-const char* to_string(Planner v) { return v == Planner::arnold ? "arnold" : "?"; }
+std::string variant_name(const RunParams& p) {
+  if (p.planner == Planner::logistic) return "logistic";
+  std::string s;
+  auto add = [&](const char* part) {
+    if (!s.empty()) s += '+';
+    s += part;
+  };
+  if (p.index_switching) add("index_switching");
+  if (p.map_zoning) add("map_zoning");
+  if (p.f != 1.0) add("scaling");
+  return s.empty() ? "original" : s;
+}
+
+const char* to_string(Planner v) { return v == Planner::arnold ? "arnold" : "logistic"; }
 const char* to_string(Boundary v) { return v == Boundary::mirror ? "mirror" : "fold"; }
 const char* to_string(Integrator v) { return v == Integrator::rk4 ? "rk4" : "rk4-doubling"; }
 const char* to_string(Sampling v) { return v == Sampling::segments ? "segments" : "points"; }
+const char* to_string(SegmentKind v) {
+  switch (v) {
+    case SegmentKind::start: return "start";
+    case SegmentKind::arnold: return "arnold";
+    case SegmentKind::transit: return "transit";
+    case SegmentKind::logistic: return "logistic";
+  }
+  return "?";
+}
+
 const char* to_string(Status v) {
   switch (v) {
     case Status::ok: return "ok";

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "arnold_planner.hpp"
+#include "planner_run.hpp"
 #include "coverage_grid.hpp"
 #include "metrics.hpp"
 #include "param_table.hpp"
@@ -41,7 +41,9 @@ std::string validate_run(const RunParams& p, const Environment& env) {
   return {};
 }
 
-RunResult run_planner(const RunParams& p, const Environment& env) {
+RunResult run_planner(const RunParams& p, const Environment& env) { return run_planner(p, env, nullptr); }
+
+RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* trace) {
   RunResult r;
   r.message = validate_run(p, env);
   if (!r.message.empty()) {
@@ -56,11 +58,7 @@ RunResult run_planner(const RunParams& p, const Environment& env) {
     return r;
   }
   r.t_opt = t_opt(p.dc, env.lx * env.ly - env.obstacle_area(), p.sr, p.v);
-  switch (p.planner) {
-    case Planner::arnold:
-      run_arnold(p, env, grid, r);
-      break;
-  }
+  PlannerRun(p, env, grid, r, trace).run();
   r.visited_cells = grid.visited_cells();
   r.final_coverage = grid.coverage();
   if (r.status == Status::ok) r.pr = r.coverage_time / r.t_opt;

@@ -4,6 +4,7 @@
 
 #include "environment.hpp"
 #include "run_params.hpp"
+#include "trace.hpp"
 
 namespace chaosweep {
 
@@ -14,5 +15,7 @@ std::string validate_run(const RunParams& p, const Environment& env);
 // says `invalid`), never depends on anything but p and env. The map's size is
 // env.lx x env.ly; p.size_x/size_y are carried for the record only.
 RunResult run_planner(const RunParams& p, const Environment& env);
+// The same, reporting every trajectory point to `trace` (may be null).
+RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* trace);
 
 }  // namespace chaosweep

@@ -22,6 +22,15 @@ class RobotMotion {
   double x() const { return x_; }
   double y() const { return y_; }
 
+  // Puts the robot at (x, y) (a transit point, already kept clear of walls
+  // and obstacles), marking the cells on the way.
+  void jump_to(double x, double y) {
+    const double px = x_, py = y_;
+    x_ = ux_ = x;
+    y_ = uy_ = y;
+    mark(px, py);
+  }
+
   void move(double dx, double dy) {
     const double px = x_, py = y_;
     if (boundary_ == Boundary::mirror) {
@@ -34,11 +43,15 @@ class RobotMotion {
       y_ = triangle_fold(uy_, 0.0, env_.ly);
     }
     if (!env_.obstacles.empty()) push_out();
+    mark(px, py);
+  }
+
+ private:
+  void mark(double px, double py) {
     if (sampling_ == Sampling::segments) grid_.mark_segment(px, py, x_, y_);
     else grid_.mark_point(x_, y_);
   }
 
- private:
   void push_out() {
     const double bx = x_, by = y_;
     if (!push_out_of_obstacles(env_, fo_, x_, y_)) return;

@@ -7,10 +7,11 @@
 
 namespace chaosweep {
 
-enum class Planner { arnold };
+enum class Planner { arnold, logistic };
 enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
+enum class ZoneGoal { free_cell, midpoint };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
 
 inline constexpr double unset = std::numeric_limits<double>::quiet_NaN();
@@ -38,6 +39,23 @@ struct RunParams {
   double max_pr = 20.0;     // auto budget in multiples of T_opt
   double stuck_time = 0.0;  // end as stuck after this long without a new cell; 0 = never
   int niter = 1000;         // points per segment (SystemScaler call)
+
+  // Control techniques (seed 000, Algorithm 1); scaling is f != 1.
+  int index_switching = 0;  // 1: switch DSindex when a segment adds <= switch_min_new cells
+  int switch_min_new = 0;
+  int map_zoning = 0;       // 1: MapZoning when Eq. 5 fails
+  double c = 0.25;          // Eq. 5 coefficient
+  int zones_x = 4, zones_y = 4;
+  ZoneGoal zone_goal = ZoneGoal::free_cell;  // where a transit to a zone goes
+  int th = 0;               // transit attempts per zone; 0 = auto (10 * L / 50)
+  int dnh = 5;              // th grows by dnh when every zone failed
+  double dt_c = 0.1;        // transit / Logistic step, s
+  double logistic_r = 4.0, logistic_x0 = 0.1;
+
+  // Chaotic spread (SPEC 1): ic perturbed uniformly in +-ic_jitter per
+  // coordinate, drawn from `seed`.
+  double ic_jitter = 0.0;
+  std::int64_t seed = 0;
 };
 
 struct RunResult {
@@ -52,9 +70,21 @@ struct RunResult {
   std::int64_t visited_cells = 0;
   std::int64_t dt_halvings = 0;  // step-doubling halvings
   double final_x = unset, final_y = unset;
+  std::int64_t segments = 0;        // Arnold / Logistic segments run
+  std::int64_t index_switches = 0;
+  std::int64_t zonings = 0;         // MapZoning calls
+  std::int64_t transits = 0;        // transits that reached their zone midpoint
+  std::int64_t zones_dropped = 0;   // zones given up after th attempts
+  std::int64_t transit_points = 0;  // mapped points walked on transits
+  std::int64_t transit_attempts = 0;  // transit points pushed out of an obstacle (Eq. 8)
+  int final_ds_index = 0;
   double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
   std::string message;           // why a run is invalid / errored
 };
+
+// Table 1's technique set of a run: "original", "logistic", or the enabled
+// switches joined by '+' ("index_switching+map_zoning+scaling").
+std::string variant_name(const RunParams& p);
 
 const char* to_string(Planner);
 const char* to_string(Boundary);

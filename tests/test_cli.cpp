@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <algorithm>
 #include <regex>
 
 #include "h5_store.hpp"
@@ -107,4 +108,31 @@ TEST(CliSweep, BadSpecExits2AndWritesNothing) {
   EXPECT_NE(r.err.find("axes.sr[1]"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(tmp.file("out.h5")));
   EXPECT_FALSE(std::filesystem::exists(tmp.file("out.h5.partial")));
+}
+
+TEST(CliSweep, EveryTable1RowRunsToOkWithThePapersParameters) {
+  TempDir tmp;
+  const auto r = run_chaosweep("sweep " + std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/table1.toml -o " +
+                               tmp.file("t1.h5") + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto labels = read_text_column(tmp.file("t1.h5"), "label");
+  const auto status = read_text_column(tmp.file("t1.h5"), "status");
+  ASSERT_EQ(labels.size(), 47u);
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    EXPECT_EQ(labels[i], std::to_string(i + 1));
+    EXPECT_EQ(status[i], "ok") << "Table 1 row " << labels[i];
+  }
+}
+
+TEST(CliRun, TraceWritesTheTrajectoryAsCsv) {
+  TempDir tmp;
+  const auto r = run_chaosweep("run --size 20 --sr 1 --env five_squares --map-zoning 1 --c 1 --trace " +
+                               tmp.file("trace.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string csv = chaosweep::test::read_file(tmp.file("trace.csv"));
+  EXPECT_EQ(csv.rfind("t,x,y,kind,ds_index\n0,6,2,start,3\n", 0), 0u) << csv.substr(0, 80);
+  EXPECT_NE(csv.find(",arnold,"), std::string::npos);
+  EXPECT_NE(csv.find(",transit,"), std::string::npos);
+  const auto rows = std::count(csv.begin(), csv.end(), '\n');
+  EXPECT_GT(rows, 1000);
 }

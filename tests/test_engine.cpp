@@ -68,20 +68,18 @@ bool same_rows(const std::vector<RunRow>& a, const std::vector<RunRow>& b, std::
 TEST(SweepSpec, ExpandsTheCartesianProductInFileOrder) {
   const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
   ASSERT_EQ(s.axes.size(), 4u);
-  EXPECT_EQ(s.axes[0].key, "C");  // file order, not alphabetical
-  EXPECT_EQ(s.axes[1].key, "A");
+  EXPECT_EQ(s.axes[0].name(), "C");  // file order, not alphabetical
+  EXPECT_EQ(s.axes[1].name(), "A");
   EXPECT_EQ(s.size(), 3 * 3 * 2 * 2);
-  RunParams p;
-  std::string env;
-  s.run_settings(0, p, env);
+  RunParams p = s.run(0).params;
   EXPECT_EQ(p.C, 0.2);
   EXPECT_EQ(p.A, 0.4);
   EXPECT_EQ(p.ds_index, 1);
   EXPECT_EQ(p.boundary, Boundary::mirror);
   EXPECT_EQ(p.size_x, 12.0);
-  s.run_settings(1, p, env);  // last axis varies fastest
+  p = s.run(1).params;  // last axis varies fastest
   EXPECT_EQ(p.boundary, Boundary::fold);
-  s.run_settings(35, p, env);
+  p = s.run(35).params;
   EXPECT_EQ(p.C, 0.3);
   EXPECT_EQ(p.A, 0.6);
   EXPECT_EQ(p.ds_index, 3);
@@ -90,17 +88,63 @@ TEST(SweepSpec, ExpandsTheCartesianProductInFileOrder) {
 TEST(SweepSpec, RangesIncludeTheirStopValue) {
   const SweepSpec s = parse_sweep_spec("[axes]\nB = { start = 0.1, stop = 0.8, step = 0.1 }\n", "x");
   ASSERT_EQ(s.axes[0].values.size(), 8u);
-  EXPECT_NEAR(std::get<double>(s.axes[0].values.back()), 0.8, 1e-12);
+  EXPECT_NEAR(std::get<double>(s.axes[0].values.back()[0].second), 0.8, 1e-12);
   const SweepSpec t = parse_sweep_spec("[axes]\nB = { start = 0.1, stop = 0.8, num = 15 }\n", "x");
-  EXPECT_EQ(std::get<double>(t.axes[0].values.back()), 0.8);
+  EXPECT_EQ(std::get<double>(t.axes[0].values.back()[0].second), 0.8);
+}
+
+TEST(SweepSpec, ZipGroupsAdvanceTogetherAsOneAxis) {
+  const SweepSpec s = parse_sweep_spec(
+      "[axes]\nf = [1, 2]\n[[zip]]\nlabel = [\"r1\", \"r2\", \"r3\"]\nsize = [50, 100, 200]\n"
+      "sr = [1, 1, 4]\n",
+      "x");
+  ASSERT_EQ(s.axes.size(), 2u);
+  EXPECT_EQ(s.axes[1].name(), "zip(label, size, sr)");
+  EXPECT_EQ(s.size(), 6);
+  const RunSpec r = s.run(5);  // f = 2, third row
+  EXPECT_EQ(r.params.f, 2.0);
+  EXPECT_EQ(r.label, "r3");
+  EXPECT_EQ(r.params.size_x, 200.0);
+  EXPECT_EQ(r.params.sr, 4.0);
+}
+
+TEST(SweepSpec, CaseTablesAreOneAxisOfRows) {
+  const SweepSpec s = parse_sweep_spec(
+      "[fixed]\nsr = 2\n[axes]\nseed = [0, 1]\n"
+      "[[case]]\nlabel = \"a\"\nsize = 20\n"
+      "[[case]]\nlabel = \"b\"\nsize = 30\nmap_zoning = 1\nc = 0.5\n",
+      "x");
+  ASSERT_EQ(s.axes.size(), 2u);
+  EXPECT_EQ(s.axes[1].kind, "case");
+  EXPECT_EQ(s.size(), 4);
+  EXPECT_EQ(s.run(0).label, "a");
+  EXPECT_EQ(s.run(0).params.map_zoning, 0);  // a case sets only its own keys
+  EXPECT_EQ(s.run(3).label, "b");
+  EXPECT_EQ(s.run(3).params.c, 0.5);
+  EXPECT_EQ(s.run(3).params.seed, 1);
+  EXPECT_NE(error_of("[[case]]\nsize = 20\n[[case]]\nsr = -1\n").find("case[1].sr"), std::string::npos);
+}
+
+TEST(SweepSpec, ExtendsAnotherSpecAndAddsAxes) {
+  TempDir tmp;
+  write_file(tmp.file("base.toml"), "[fixed]\nsr = 4\nsize = 20\n[axes]\nA = [0.4, 0.5]\n");
+  write_file(tmp.file("more.toml"),
+             "[sweep]\nextends = \"base.toml\"\n[fixed]\nsr = 2\n[axes]\nseed = { start = 0, stop = 2, step = 1 }\n");
+  const SweepSpec s = load_sweep_spec(tmp.file("more.toml"));
+  EXPECT_EQ(s.size(), 6);
+  EXPECT_EQ(s.base.params.sr, 2.0);  // the extending spec's fixed value wins
+  EXPECT_EQ(s.base.params.size_x, 20.0);
+  EXPECT_EQ(s.run(5).params.A, 0.5);
+  EXPECT_EQ(s.run(5).params.seed, 2);
+  EXPECT_NE(s.text.find("A = [0.4, 0.5]"), std::string::npos);  // provenance holds both files
+  write_file(tmp.file("clash.toml"), "[sweep]\nextends = \"base.toml\"\n[fixed]\nA = 1\n");
+  EXPECT_THROW(load_sweep_spec(tmp.file("clash.toml")), SpecError);
 }
 
 TEST(SweepSpec, AcceptsAliasesAndTuples) {
   const SweepSpec s = parse_sweep_spec(
       "[fixed]\nsize = [40, 30]\nic = [0.1, 0.2, 0.3]\n[axes]\nstart = [[1, 1], [2, 3]]\n", "x");
-  RunParams p;
-  std::string env;
-  s.run_settings(1, p, env);
+  const RunParams p = s.run(1).params;
   EXPECT_EQ(p.size_x, 40.0);
   EXPECT_EQ(p.size_y, 30.0);
   EXPECT_EQ(p.ic_z, 0.3);
@@ -120,6 +164,8 @@ TEST(SweepSpec, ErrorsNameTheKeyAndTheAllowedRange) {
   EXPECT_NE(error_of("[fixed]\nA = \"big\"\n").find("must be a number"), std::string::npos);
   EXPECT_NE(error_of("[runs]\n").find("unknown section 'runs'"), std::string::npos);
   EXPECT_NE(error_of("[fixed]\nA = 1\n[axes]\nA = [1, 2]\n").find("one place"), std::string::npos);
+  EXPECT_NE(error_of("[[zip]]\nA = [1, 2]\nB = [1]\n").find("equal lengths"), std::string::npos);
+  EXPECT_NE(error_of("[[zip]]\nA = [1, 2]\nsr = [1, 0]\n").find("zip[0].sr[1]"), std::string::npos);
   EXPECT_NE(error_of("[fixed\n").find("line 1"), std::string::npos);
 }
 
@@ -127,9 +173,9 @@ TEST(SweepSpec, DemoSpecIsAFewHundredRunsOfTheOriginalPlanner) {
   const SweepSpec s = load_sweep_spec(std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml");
   EXPECT_EQ(s.name, "demo");
   EXPECT_EQ(s.size(), 7 * 8 * 5);
-  EXPECT_EQ(s.base.planner, Planner::arnold);
-  EXPECT_EQ(s.base.sr, 4.0);
-  EXPECT_EQ(s.base.size_x, 50.0);
+  EXPECT_EQ(s.base.params.planner, Planner::arnold);
+  EXPECT_EQ(s.base.params.sr, 4.0);
+  EXPECT_EQ(s.base.params.size_x, 50.0);
 }
 
 // ------------------------------------------------------------ environments

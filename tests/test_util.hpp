@@ -2,9 +2,15 @@
 // Shared by the test executables: scratch directories, files, and running the
 // chaosweep binary as a user would.
 #include <filesystem>
+#include <ostream>
 #include <string>
 
 #include "run_params.hpp"
+
+namespace chaosweep {
+// GoogleTest prints statuses by name.
+inline void PrintTo(Status s, std::ostream* os) { *os << to_string(s); }
+}  // namespace chaosweep
 
 namespace chaosweep::test {
 

@@ -1,0 +1,67 @@
+// MapZoning (seed 000, Algorithm 2) and LogisticObstacleAvoid (Algorithm 4).
+#include <cmath>
+
+#include "boundary.hpp"
+#include "planner_run.hpp"
+
+namespace chaosweep {
+
+void PlannerRun::map_zoning() {
+  ++r_.zonings;
+  std::vector<bool> dropped(std::size_t(zones_.count()), false);
+  for (;;) {
+    // Re-ranked from wherever the robot now is: failed transits move it.
+    const auto order = zone_order(zones_.snapshot(grid_), zones_.zone_of(robot_.x(), robot_.y()),
+                                  robot_.x(), robot_.y(), !env_.obstacles.empty());
+    const ZoneInfo* next = nullptr;
+    for (const ZoneInfo& z : order)
+      if (!dropped[std::size_t(z.index)]) {
+        next = &z;
+        break;
+      }
+    if (!next) {
+      th_ += p_.dnh;  // every zone failed: be more patient next time
+      return;
+    }
+    if (transit_to({next->goal_x, next->goal_y})) {
+      ++r_.transits;
+      return;
+    }
+    if (ended_) return;
+    dropped[std::size_t(next->index)] = true;
+    ++r_.zones_dropped;
+  }
+}
+
+bool PlannerRun::transit_to(Point goal) {
+  int attempts = 0;
+  Point start{robot_.x(), robot_.y()};
+  for (;;) {
+    const std::vector<Point> path = transit_path(start, goal, p_.v, p_.dt_c, logistic_);
+    if (path.empty()) {
+      end(Status::diverged, "Logistic map reached a fixed point");
+      return false;
+    }
+    bool rebuilt = false;
+    for (std::size_t i = 1; i < path.size(); ++i) {
+      // Eq. 7 near the walls, as on Arnold segments.
+      double x = mirror_eq7(path[i].x, 0.0, env_.lx, p_.fo);
+      double y = mirror_eq7(path[i].y, 0.0, env_.ly, p_.fo);
+      const bool blocked = env_.obstacle_at(x, y) >= 0;
+      if (blocked) push_out_of_obstacles(env_, p_.fo, x, y);  // Eq. 8
+      robot_.jump_to(x, y);
+      ++r_.transit_points;
+      if (after_move(p_.dt_c, SegmentKind::transit)) return false;
+      if (blocked) {
+        ++r_.transit_attempts;
+        if (++attempts >= th_) return false;
+        start = {x, y};  // rebuild the rest of the path from the pushed-out point
+        rebuilt = true;
+        break;
+      }
+    }
+    if (!rebuilt) return true;
+  }
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,162 @@
+#include "planner_run.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+#include "control.hpp"
+#include "metrics.hpp"
+#include "splitmix.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+// Uniform in [-1, 1).
+double uniform_pm1(std::uint64_t& state) { return 2.0 * uniform01(state) - 1.0; }
+
+bool finite(const Vec3<double>& u) {
+  return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z);
+}
+
+int auto_th(const RunParams& p, const Environment& env) {
+  if (p.th > 0) return p.th;
+  // Paper: th = 10 on 50 m maps, higher on larger maps (SPEC: 10 * L / 50).
+  return std::max(1, int(std::lround(10.0 * std::max(env.lx, env.ly) / 50.0)));
+}
+
+}  // namespace
+
+Vec3<double> initial_state(const RunParams& p) {
+  Vec3<double> u{p.ic_x, p.ic_y, p.ic_z};
+  if (p.ic_jitter > 0) {
+    std::uint64_t s = std::uint64_t(p.seed);
+    u.x += p.ic_jitter * uniform_pm1(s);
+    u.y += p.ic_jitter * uniform_pm1(s);
+    u.z += p.ic_jitter * uniform_pm1(s);
+  }
+  return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
+}
+
+PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
+                       TraceSink* trace)
+    : p_(p), env_(env), grid_(grid), r_(r), trace_(trace),
+      needed_(cells_needed(p.dc, grid.free_cells())),
+      budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
+      k_{p.A, p.B, p.C}, u_(initial_state(p)), ds_(p.ds_index), h_(p.dt),
+      last_visited_(0), th_(auto_th(p, env)), robot_(p, env, grid),
+      logistic_{p.logistic_x0, p.logistic_r}, zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
+  last_visited_ = grid_.visited_cells();
+  if (trace_) trace_->point({0.0, robot_.x(), robot_.y(), SegmentKind::start, ds_});
+}
+
+void PlannerRun::end(Status s, const char* why) {
+  ended_ = true;
+  r_.status = s;
+  if (why) r_.message = why;
+  if (s == Status::ok) r_.coverage_time = t_;
+}
+
+bool PlannerRun::after_move(double dt, SegmentKind kind) {
+  t_ += dt;
+  if (trace_) trace_->point({t_, robot_.x(), robot_.y(), kind, ds_});
+  if (grid_.visited_cells() != last_visited_) {
+    last_visited_ = grid_.visited_cells();
+    t_last_new_ = t_;
+  }
+  if (!std::isfinite(robot_.x()) || !std::isfinite(robot_.y())) end(Status::diverged, "non-finite position");
+  else if (grid_.visited_cells() >= needed_) end(Status::ok);
+  else if (t_ >= budget_) end(Status::timeout);
+  else if (p_.stuck_time > 0 && t_ - t_last_new_ >= p_.stuck_time) end(Status::stuck);
+  return ended_;
+}
+
+void PlannerRun::run() {
+  // The start cell alone may already satisfy a tiny dc.
+  if (grid_.visited_cells() >= needed_) end(Status::ok);
+  else if (p_.planner == Planner::logistic) logistic_loop();
+  else arnold_loop();
+  r_.t_end = t_;
+  r_.final_x = robot_.x();
+  r_.final_y = robot_.y();
+  r_.final_ds_index = ds_;
+}
+
+// ------------------------------------------------------------- Algorithm 1
+
+void PlannerRun::arnold_loop() {
+  const bool zoning = p_.map_zoning != 0, switching = p_.index_switching != 0;
+  while (!ended_) {
+    if (zoning) grid_.begin_window();
+    const long c_u = grid_.free_cells() - grid_.visited_cells();  // unvisited before the segment
+    const long c_n = arnold_segment();
+    if (ended_) break;
+    const bool keep_exploring =
+        !zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), c_u, grid_.free_cells(), p_.c);
+    if (!keep_exploring) {
+      map_zoning();
+    } else if (switching && c_n <= p_.switch_min_new) {
+      ds_ = next_ds_index(ds_);
+      ++r_.index_switches;
+    }
+  }
+}
+
+long PlannerRun::arnold_segment() {
+  ++r_.segments;
+  const long before = grid_.visited_cells();
+  for (int i = 0; i < p_.niter && !ended_; ++i) arnold_step();
+  return grid_.visited_cells() - before;
+}
+
+void PlannerRun::arnold_step() {
+  const HeadingSelect<double> hs = heading_select(ds_);
+  const double h_pos = p_.f * p_.v * h_;
+  const Rk4Step<double> full = rk4_step(u_, k_, hs, h_, h_pos);
+  double dt_used = h_;
+  if (p_.integrator == Integrator::rk4_doubling) {
+    const double hh = 0.5 * h_, hh_pos = 0.5 * h_pos;
+    const Rk4Step<double> a = rk4_step(u_, k_, hs, hh, hh_pos);
+    const Rk4Step<double> b = rk4_step(a.u, k_, hs, hh, hh_pos);
+    if (std::fabs(full.dX - (a.dX + b.dX)) > p_.ep || std::fabs(full.dY - (a.dY + b.dY)) > p_.ep) {
+      // Accept the two half steps and keep dt/2 for the rest of the run.
+      robot_.move(a.dX, a.dY);
+      robot_.move(b.dX, b.dY);
+      u_ = b.u;
+      h_ = hh;
+      r_.steps += 2;
+      ++r_.dt_halvings;
+      if (!finite(u_)) return end(Status::diverged, "non-finite Arnold state");
+      if (after_move(p_.f * dt_used, SegmentKind::arnold)) return;
+      if (h_ < p_.dt_min) end(Status::diverged, "step doubling shrank dt below dt_min");
+      return;
+    }
+  }
+  robot_.move(full.dX, full.dY);
+  u_ = full.u;
+  r_.steps += 1;
+  if (!finite(u_)) return end(Status::diverged, "non-finite Arnold state");
+  after_move(p_.f * dt_used, SegmentKind::arnold);
+}
+
+// ----------------------------------------------------- Logistic map only
+
+void PlannerRun::logistic_loop() {
+  while (!ended_) logistic_segment();
+}
+
+long PlannerRun::logistic_segment() {
+  ++r_.segments;
+  const long before = grid_.visited_cells();
+  // The heading branch is chosen once per segment: rightwards from the left half.
+  const bool rightwards = robot_.x() < 0.5 * env_.lx;
+  for (int i = 0; i < p_.niter && !ended_; ++i) {
+    if (!logistic_.step()) return end(Status::diverged, "Logistic map reached a fixed point"), 0;
+    const double th = logistic_.heading(rightwards);
+    robot_.move(p_.dt_c * p_.v * std::cos(th), p_.dt_c * p_.v * std::sin(th));
+    ++r_.steps;
+    after_move(p_.dt_c, SegmentKind::logistic);
+  }
+  return grid_.visited_cells() - before;
+}
+
+}  // namespace chaosweep

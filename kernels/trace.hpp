@@ -1,0 +1,21 @@
+#pragma once
+// An optional observer of a run's trajectory (for `run --trace` and figures).
+// The kernels call it; they never know where the points go.
+namespace chaosweep {
+
+enum class SegmentKind { start, arnold, transit, logistic };
+const char* to_string(SegmentKind);
+
+struct TracePoint {
+  double t, x, y;
+  SegmentKind kind;
+  int ds_index;
+};
+
+class TraceSink {
+ public:
+  virtual ~TraceSink() = default;
+  virtual void point(const TracePoint& p) = 0;
+};
+
+}  // namespace chaosweep
