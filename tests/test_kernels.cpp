@@ -18,16 +18,9 @@
 
 using namespace chaosweep;
 using chaosweep::test::small_run;
+using chaosweep::test::square_map;
 
 namespace {
-
-Environment square(double side, std::vector<Rect> obstacles = {}) {
-  Environment env;
-  env.name = "test";
-  env.lx = env.ly = side;
-  env.obstacles = std::move(obstacles);
-  return env;
-}
 
 std::set<std::pair<int, int>> marked_cells(const CoverageGrid& g) {
   std::set<std::pair<int, int>> s;
@@ -173,7 +166,7 @@ TEST(RobotMotion, NeverLeavesTheMapUnderEitherBoundary) {
   for (Boundary b : {Boundary::mirror, Boundary::fold}) {
     RunParams p = small_run(10.0);
     p.boundary = b;
-    const Environment env = square(10.0);
+    const Environment env = square_map(10.0);
     CoverageGrid grid(env, 1.0);
     RobotMotion robot(p, env, grid);
     std::mt19937_64 rng(1);
@@ -191,7 +184,7 @@ TEST(RobotMotion, NeverLeavesTheMapUnderEitherBoundary) {
 
 TEST(RobotMotion, PushesOutOfObstaclesByEq8) {
   RunParams p = small_run(10.0);
-  const Environment env = square(10.0, {{4, 4, 6, 6}});
+  const Environment env = square_map(10.0, {{4, 4, 6, 6}});
   CoverageGrid grid(env, 1.0);
   p.start_x = 3.0;
   p.start_y = 5.0;
@@ -204,7 +197,7 @@ TEST(RobotMotion, PushesOutOfObstaclesByEq8) {
 // -------------------------------------------------------------- coverage
 
 TEST(CoverageGrid, UsesCeilCellsWithTheLastRowClipped) {
-  const CoverageGrid g(square(50.0), 4.0);
+  const CoverageGrid g(square_map(50.0), 4.0);
   EXPECT_EQ(g.nx(), 13);
   EXPECT_EQ(g.ny(), 13);
   EXPECT_EQ(g.free_cells(), 169);
@@ -214,7 +207,7 @@ TEST(CoverageGrid, UsesCeilCellsWithTheLastRowClipped) {
 TEST(CoverageGrid, ACellIsBlockedWhenItsCentreIsInAnObstacle) {
   // Covers most of cell (1,1) and slivers of its neighbours: only (1,1)'s
   // centre (1.5, 1.5) is inside.
-  const CoverageGrid g(square(4.0, {{0.9, 0.9, 2.1, 1.6}}), 1.0);
+  const CoverageGrid g(square_map(4.0, {{0.9, 0.9, 2.1, 1.6}}), 1.0);
   EXPECT_EQ(g.at(1, 1), CoverageGrid::blocked);
   EXPECT_EQ(g.at(0, 0), CoverageGrid::unvisited);
   EXPECT_EQ(g.at(2, 1), CoverageGrid::unvisited);
@@ -222,22 +215,22 @@ TEST(CoverageGrid, ACellIsBlockedWhenItsCentreIsInAnObstacle) {
 }
 
 TEST(Supercover, MarksEveryCellOfAnAxisAlignedSegment) {
-  CoverageGrid g(square(5.0), 1.0);
+  CoverageGrid g(square_map(5.0), 1.0);
   g.mark_segment(0.5, 2.5, 4.5, 2.5);
   EXPECT_EQ(marked_cells(g), (std::set<std::pair<int, int>>{{0, 2}, {1, 2}, {2, 2}, {3, 2}, {4, 2}}));
 }
 
 TEST(Supercover, MarksBothSideCellsThroughACorner) {
-  CoverageGrid g(square(5.0), 1.0);
+  CoverageGrid g(square_map(5.0), 1.0);
   g.mark_segment(0.5, 0.5, 1.5, 1.5);
   EXPECT_EQ(marked_cells(g), (std::set<std::pair<int, int>>{{0, 0}, {1, 0}, {0, 1}, {1, 1}}));
 }
 
 TEST(Supercover, MarksTheCellsASteepSegmentCrosses) {
-  CoverageGrid g(square(5.0), 1.0);
+  CoverageGrid g(square_map(5.0), 1.0);
   g.mark_segment(1.2, 0.3, 1.9, 3.7);  // stays in column 1 through rows 0..3
   EXPECT_EQ(marked_cells(g), (std::set<std::pair<int, int>>{{1, 0}, {1, 1}, {1, 2}, {1, 3}}));
-  CoverageGrid h(square(5.0), 1.0);
+  CoverageGrid h(square_map(5.0), 1.0);
   h.mark_segment(0.2, 0.8, 2.8, 1.3);  // crosses x = 1 at y = 0.95, then y = 1 at x = 1.24
   EXPECT_EQ(marked_cells(h), (std::set<std::pair<int, int>>{{0, 0}, {1, 0}, {1, 1}, {2, 1}}));
 }
@@ -247,7 +240,7 @@ TEST(Supercover, EqualsDenseSamplingOnRandomSegments) {
   std::uniform_real_distribution<double> u(0.0, 20.0);
   for (int trial = 0; trial < 300; ++trial) {
     const double x0 = u(rng), y0 = u(rng), x1 = u(rng), y1 = u(rng);
-    CoverageGrid g(square(20.0), 1.5), dense(square(20.0), 1.5);
+    CoverageGrid g(square_map(20.0), 1.5), dense(square_map(20.0), 1.5);
     g.mark_segment(x0, y0, x1, y1);
     for (int k = 0; k <= 200000; ++k) {
       const double t = k / 200000.0;
@@ -261,7 +254,7 @@ TEST(Supercover, EqualsDenseSamplingOnRandomSegments) {
 }
 
 TEST(Supercover, MarksEachFreeCellOnceAndSkipsBlockedCells) {
-  CoverageGrid g(square(4.0, {{1, 0, 2, 4}}), 1.0);  // column 1 blocked
+  CoverageGrid g(square_map(4.0, {{1, 0, 2, 4}}), 1.0);  // column 1 blocked
   EXPECT_EQ(g.free_cells(), 12);
   g.mark_segment(0.5, 0.5, 3.5, 0.5);
   g.mark_segment(3.5, 0.5, 0.5, 0.5);
@@ -288,7 +281,7 @@ TEST(Planner, ReportsCoverageTOptAndPrOnATinyMap) {
   RunParams p = small_run(4.0);
   p.dc = 0.5;
   p.fo = 0.25;
-  const RunResult r = run_planner(p, square(4.0));
+  const RunResult r = run_planner(p, square_map(4.0));
   ASSERT_EQ(r.status, Status::ok) << r.message;
   EXPECT_EQ(r.free_cells, 16);
   EXPECT_GE(r.visited_cells, 8);
@@ -302,7 +295,7 @@ TEST(Planner, ReportsCoverageTOptAndPrOnATinyMap) {
 TEST(Planner, OriginalArnoldOnTable1Row1EndsOkInThousandsOfSeconds) {
   RunParams p = small_run(50.0);
   p.ds_index = 3;
-  const RunResult r = run_planner(p, square(50.0));
+  const RunResult r = run_planner(p, square_map(50.0));
   ASSERT_EQ(r.status, Status::ok);
   EXPECT_GT(r.coverage_time, 1000.0);
   EXPECT_LT(r.coverage_time, 45000.0);
@@ -311,7 +304,7 @@ TEST(Planner, OriginalArnoldOnTable1Row1EndsOkInThousandsOfSeconds) {
 
 TEST(Planner, IsAPureFunctionOfItsParameters) {
   RunParams p = small_run(20.0);
-  const RunResult a = run_planner(p, square(20.0)), b = run_planner(p, square(20.0));
+  const RunResult a = run_planner(p, square_map(20.0)), b = run_planner(p, square_map(20.0));
   EXPECT_EQ(a.coverage_time, b.coverage_time);
   EXPECT_EQ(a.steps, b.steps);
   EXPECT_EQ(a.final_x, b.final_x);
@@ -321,7 +314,7 @@ TEST(Planner, IsAPureFunctionOfItsParameters) {
 TEST(Planner, StartInsideAnObstacleIsInvalid) {
   RunParams p = small_run(10.0);
   p.start_x = p.start_y = 5.0;
-  const RunResult r = run_planner(p, square(10.0, {{4, 4, 6, 6}}));
+  const RunResult r = run_planner(p, square_map(10.0, {{4, 4, 6, 6}}));
   EXPECT_EQ(r.status, Status::invalid);
   EXPECT_NE(r.message.find("inside obstacle #0"), std::string::npos) << r.message;
 }
@@ -329,7 +322,7 @@ TEST(Planner, StartInsideAnObstacleIsInvalid) {
 TEST(Planner, OutOfRangeParameterIsInvalidAndNamed) {
   RunParams p = small_run(10.0);
   p.ds_index = 4;
-  const RunResult r = run_planner(p, square(10.0));
+  const RunResult r = run_planner(p, square_map(10.0));
   EXPECT_EQ(r.status, Status::invalid);
   EXPECT_NE(r.message.find("ds_index"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("[1, 3]"), std::string::npos) << r.message;
@@ -338,7 +331,7 @@ TEST(Planner, OutOfRangeParameterIsInvalidAndNamed) {
 TEST(Planner, TimeBudgetEndsTheRunAsTimeout) {
   RunParams p = small_run(50.0);
   p.max_time = 30.0;
-  const RunResult r = run_planner(p, square(50.0));
+  const RunResult r = run_planner(p, square_map(50.0));
   EXPECT_EQ(r.status, Status::timeout);
   EXPECT_TRUE(std::isnan(r.coverage_time));
   EXPECT_TRUE(std::isnan(r.pr));
@@ -350,7 +343,7 @@ TEST(Planner, NoNewCellForStuckTimeEndsTheRunAsStuck) {
   RunParams p = small_run(10.0);
   p.A = p.B = p.C = 0.0;  // frozen heading: the robot slides along one wall
   p.stuck_time = 50.0;
-  const RunResult r = run_planner(p, square(10.0));
+  const RunResult r = run_planner(p, square_map(10.0));
   EXPECT_EQ(r.status, Status::stuck);
   EXPECT_LT(r.t_end, 100.0);
 }
@@ -361,7 +354,7 @@ TEST(Planner, StepSizeCollapseEndsTheRunAsDiverged) {
   p.A = p.B = p.C = 900.0;  // stiff: step doubling never meets ep
   p.ep = 1e-15;
   p.dt_min = 0.01;  // 0.1 -> 0.05 -> 0.025 -> 0.0125 -> 0.00625 < dt_min
-  const RunResult r = run_planner(p, square(10.0));
+  const RunResult r = run_planner(p, square_map(10.0));
   EXPECT_EQ(r.status, Status::diverged);
   EXPECT_EQ(r.dt_halvings, 4);
   EXPECT_NE(r.message.find("dt_min"), std::string::npos) << r.message;
@@ -374,9 +367,9 @@ TEST(Planner, StepDoublingEqualsFixedStepForThePapersParameters) {
     RunParams p = small_run(50.0);
     p.sr = 4.0;
     p.ds_index = ds;
-    const RunResult fixed = run_planner(p, square(50.0));
+    const RunResult fixed = run_planner(p, square_map(50.0));
     p.integrator = Integrator::rk4_doubling;
-    const RunResult doubling = run_planner(p, square(50.0));
+    const RunResult doubling = run_planner(p, square_map(50.0));
     EXPECT_EQ(doubling.dt_halvings, 0);
     EXPECT_EQ(doubling.status, fixed.status);
     EXPECT_EQ(doubling.coverage_time, fixed.coverage_time);
@@ -389,7 +382,7 @@ TEST(Planner, StepDoublingHalvesWhenTheToleranceIsTight) {
   p.integrator = Integrator::rk4_doubling;
   p.ep = 1e-12;
   p.dc = 0.3;
-  const RunResult r = run_planner(p, square(20.0));
+  const RunResult r = run_planner(p, square_map(20.0));
   EXPECT_EQ(r.status, Status::ok);
   EXPECT_GT(r.dt_halvings, 0);
 }
@@ -404,7 +397,7 @@ TEST(Planner, ScalingFactorStretchesThePathAtConstantSpeed) {
   p.start_x = 1.0;
   p.start_y = 25.0;
   p.f = 3.0;
-  const RunResult r = run_planner(p, square(50.0));
+  const RunResult r = run_planner(p, square_map(50.0));
   EXPECT_EQ(r.steps, 20);            // 6 s of robot time in steps of f*dt = 0.3 s
   EXPECT_NEAR(r.final_x, 7.0, 1e-9);  // moved v * t = 6 m
 }
@@ -414,8 +407,8 @@ TEST(Planner, PointSamplingNeverCoversMoreThanSegments) {
   p.f = 6.0;
   p.max_time = 2000.0;
   p.dc = 1.0;
-  const RunResult seg = run_planner(p, square(50.0));
+  const RunResult seg = run_planner(p, square_map(50.0));
   p.sampling = Sampling::points;
-  const RunResult pts = run_planner(p, square(50.0));
+  const RunResult pts = run_planner(p, square_map(50.0));
   EXPECT_LT(pts.visited_cells, seg.visited_cells);
 }

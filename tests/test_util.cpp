@@ -53,4 +53,12 @@ RunParams small_run(double side) {
   return p;
 }
 
+Environment square_map(double side, std::vector<Rect> obstacles) {
+  Environment env;
+  env.name = "hand-made";
+  env.lx = env.ly = side;
+  env.obstacles = std::move(obstacles);
+  return env;
+}
+
 }  // namespace chaosweep::test

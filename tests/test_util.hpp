@@ -5,6 +5,7 @@
 #include <ostream>
 #include <string>
 
+#include "environment.hpp"
 #include "run_params.hpp"
 
 namespace chaosweep {
@@ -39,5 +40,8 @@ CommandResult run_chaosweep(const std::string& args);
 
 // A small, fast, valid Arnold run: a `side` m map with 1 m cells.
 RunParams small_run(double side = 10.0);
+
+// A square map with the given obstacles.
+Environment square_map(double side, std::vector<Rect> obstacles = {});
 
 }  // namespace chaosweep::test
