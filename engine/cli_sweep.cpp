@@ -8,6 +8,8 @@
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
 #include "h5_store.hpp"
+#include "progress.hpp"
+#include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 #include "sweep_summary.hpp"
 #include "version.hpp"
@@ -25,16 +27,23 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
     std::string spec, out;
     int threads = 0;
     bool quiet = false;
+    std::string progress = "auto";
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("spec", o->spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->out, "result file (HDF5)")->required();
   cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096));
-  cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");
+  cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors (and progress only with --progress=always)");
+  cmd->add_option("--progress", o->progress,
+                  "progress on stderr: a live line on a terminal, a plain line every 30 s otherwise")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->default_str("auto");
   cmd->callback([o, &action] {
     action = [o]() -> int {
       SweepSpec spec;
+      SimdTarget target;
       try {
+        target = selected_simd_target();
         spec = load_sweep_spec(o->spec);
         EnvironmentCache cache;
         preload_environments(spec, cache);
@@ -46,7 +55,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       const int threads = o->threads > 0 ? o->threads : int(cores);
       if (!o->quiet)
         std::cout << "sweep '" << spec.name << "': " << spec.size() << " runs on " << threads
-                  << " threads -> " << o->out << "\n";
+                  << " threads, " << to_string(target) << " kernels -> " << o->out << "\n";
       SweepSummary summary;
       try {
         H5RunWriter writer(o->out);
@@ -58,13 +67,23 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         writer.set_attribute("spec_name", spec.name);
         writer.set_attribute("host", host_name());
         writer.set_attribute("threads", std::to_string(threads));
+        writer.set_attribute("simd_target", to_string(target));
         writer.set_attribute("start_time", utc_now());
         SweepOptions opt;
         opt.threads = threads;
-        run_sweep(spec, opt, [&](const std::vector<RunRow>& rows) {
-          writer.append(rows);
-          for (const RunRow& r : rows) summary.add(r);
-        });
+        opt.target = target;
+        ProgressCounters counters;
+        opt.progress = &counters;
+        const ProgressMode mode = o->progress == "never" || (o->quiet && o->progress == "auto") ? ProgressMode::never
+                                  : o->progress == "always"                                    ? ProgressMode::always
+                                                                                               : ProgressMode::automatic;
+        {
+          ProgressReporter reporter(counters, spec.size(), mode);
+          run_sweep(spec, opt, [&](const std::vector<RunRow>& rows) {
+            writer.append(rows);
+            for (const RunRow& r : rows) summary.add(r);
+          });
+        }
         writer.set_attribute("end_time", utc_now());
         writer.finish();
       } catch (const std::exception& e) {

@@ -4,6 +4,7 @@
 
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
+#include "simd_choice.hpp"
 #include "version.hpp"
 
 int main(int argc, char** argv) {
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   std::function<int()> action;
   add_run_command(app, action);
   add_sweep_command(app, action);
+  add_bench_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -22,8 +24,16 @@ int main(int argc, char** argv) {
     return rc == 0 ? exit_ok : exit_bad_input;
   }
   if (version) {
-    std::cout << "chaosweep " << engine_version() << " (git " << git_commit()
-              << (git_dirty() ? ", dirty" : "") << ")\n";
+    std::cout << "chaosweep " << engine_version() << " (git " << git_commit() << (git_dirty() ? ", dirty" : "")
+              << ")\n";
+    try {
+      const SimdTarget t = selected_simd_target();
+      std::cout << "kernels: " << to_string(t) << " (" << lane_width(t) << " doubles per vector; best on this CPU: "
+                << to_string(best_simd_target()) << ")\n";
+    } catch (const std::exception& e) {
+      std::cerr << "chaosweep: " << e.what() << "\n";
+      return exit_bad_input;
+    }
     return exit_ok;
   }
   if (!action) {

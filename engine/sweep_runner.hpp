@@ -1,21 +1,27 @@
 #pragma once
 // Fans the runs of a spec out over oneTBB and hands result rows back in
-// run_id order, a batch at a time. Only parallelises: run i's row is computed
-// by evaluate() alone and lands in slot i, so the output never depends on the
-// thread count or on scheduling.
+// run_id order, a batch at a time. Only parallelises: each task runs a chunk
+// of runs through the lane driver (kernels/lane_driver.hpp), whose results
+// land in their runs' slots, so the output never depends on the thread
+// count, the chunking or the kernel width.
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "environment_loader.hpp"
+#include "progress.hpp"
 #include "run_tuple.hpp"
+#include "simd_target.hpp"
 #include "sweep_spec.hpp"
 
 namespace chaosweep {
 
 struct SweepOptions {
-  int threads = 0;               // 0: all cores
-  std::int64_t batch_size = 4096;
+  int threads = 0;                    // 0: all cores
+  std::int64_t batch_size = 4096;     // rows handed to the sink at once (the flush unit)
+  std::int64_t chunk_size = 0;        // runs per TBB task; 0: chosen from lanes and threads
+  SimdTarget target = best_simd_target();
+  ProgressCounters* progress = nullptr;  // bumped as chunks complete
 };
 
 using RowSink = std::function<void(const std::vector<RunRow>&)>;
@@ -26,6 +32,9 @@ void preload_environments(const SweepSpec& spec, EnvironmentCache& cache);
 
 // Runs every run of `spec`, calling sink with consecutive batches.
 void run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink);
+
+// Runs already-resolved tuples (results in tuple order) on `opt`'s arena size.
+std::vector<RunRow> run_tuples(const std::vector<RunTuple>& tuples, const SweepOptions& opt);
 
 // All rows at once (tests, small sweeps).
 std::vector<RunRow> run_sweep_rows(const SweepSpec& spec, const SweepOptions& opt);

@@ -20,6 +20,12 @@ inline T triangle_fold(T u, T lo, T hi) {
   return lane::select((r >= lo) & (r <= hi), r, lo + w);
 }
 
+// The scalar form branches on the common case (already inside); same result.
+inline double triangle_fold(double u, double lo, double hi) {
+  if (u >= lo && u <= hi) return u;
+  return triangle_fold<double>(u, lo, hi);
+}
+
 // Eq. 7, paper-literal: a position within fo of a wall, or beyond it, is
 // reflected about the line at offset fo. Repeated reflection (the fold of the
 // band [lo+fo, hi-fo]) equals Eq. 7 for every step shorter than the band and

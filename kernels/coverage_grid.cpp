@@ -25,11 +25,10 @@ CoverageGrid::CoverageGrid(const Environment& env, double cell_size)
     }
 }
 
-void CoverageGrid::mark_segment(double x0, double y0, double x1, double y1) {
+void CoverageGrid::mark_crossing(double x0, double y0, double x1, double y1) {
   int i = cell_x(x0), j = cell_y(y0);
   const int i_end = cell_x(x1), j_end = cell_y(y1);
   mark_cell(i, j);
-  if (i == i_end && j == j_end) return;  // the common case: a short step
 
   // Amanatides-Woo traversal in grid units, with exact corner handling.
   const double gx0 = x0 * inv_cell_, gy0 = y0 * inv_cell_;

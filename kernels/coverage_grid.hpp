@@ -17,6 +17,7 @@ class CoverageGrid {
 
   int nx() const { return nx_; }
   double cell_size() const { return cell_; }
+  double inv_cell_size() const { return inv_cell_; }
   int ny() const { return ny_; }
   int free_cells() const { return free_; }
   int visited_cells() const { return visited_; }
@@ -49,10 +50,16 @@ class CoverageGrid {
   int window_distinct() const { return window_distinct_; }
   void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
   // Supercover: every cell the closed segment touches, including both side
-  // cells where it passes exactly through a grid corner.
-  void mark_segment(double x0, double y0, double x1, double y1);
+  // cells where it passes exactly through a grid corner. Inline for the
+  // common case of a step that stays in its cell.
+  void mark_segment(double x0, double y0, double x1, double y1) {
+    const int i = cell_x(x0), j = cell_y(y0);
+    if (i == cell_x(x1) && j == cell_y(y1)) mark_cell(i, j);
+    else mark_crossing(x0, y0, x1, y1);
+  }
 
  private:
+  void mark_crossing(double x0, double y0, double x1, double y1);
   static int clamp_index(double g, int n) {
     if (!(g > 0.0)) return 0;  // also maps NaN to 0; callers reject NaN first
     const int i = static_cast<int>(g);

@@ -35,9 +35,24 @@ inline double floor(double x) {
 }
 
 inline double select(mask1 m, double a, double b) { return m ? a : b; }
+inline double trunc(double x) { return std::trunc(x); }
+
 inline int1 to_int(double x) { return static_cast<int1>(x); }
 inline double abs(double x) { return std::fabs(x); }
 inline double min(double a, double b) { return a < b ? a : b; }
 inline double max(double a, double b) { return a > b ? a : b; }
+
+// sin and cos of x = j*pi/2 + r from sin r and cos r: quadrant q = j mod 4
+// swaps them (q odd) and sets their signs. Vector widths implement the same
+// selection with mask instructions (simd_lane_math.hpp).
+template <class T>
+inline void quadrant(T j, T sin_r, T cos_r, T& s, T& c) {
+  const auto q = to_int(j);
+  const auto swap = (q & 1) != 0;
+  const T s_abs = select(swap, cos_r, sin_r);
+  const T c_abs = select(swap, sin_r, cos_r);
+  s = select((q & 2) != 0, -s_abs, s_abs);
+  c = select(((q + 1) & 2) != 0, -c_abs, c_abs);
+}
 
 }  // namespace chaosweep::lane

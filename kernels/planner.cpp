@@ -43,25 +43,37 @@ std::string validate_run(const RunParams& p, const Environment& env) {
 
 RunResult run_planner(const RunParams& p, const Environment& env) { return run_planner(p, env, nullptr); }
 
-RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* trace) {
-  RunResult r;
+bool prepare_run(const RunParams& p, const Environment& env, std::optional<CoverageGrid>& grid, RunResult& r) {
+  r = RunResult{};
+  grid.reset();
   r.message = validate_run(p, env);
   if (!r.message.empty()) {
     r.status = Status::invalid;
-    return r;
+    return false;
   }
-  CoverageGrid grid(env, p.sr);
-  r.free_cells = grid.free_cells();
+  grid.emplace(env, p.sr);
+  r.free_cells = grid->free_cells();
   if (r.free_cells == 0) {
     r.status = Status::invalid;
     r.message = "environment '" + env.name + "' has no free cell";
-    return r;
+    return false;
   }
   r.t_opt = t_opt(p.dc, env.lx * env.ly - env.obstacle_area(), p.sr, p.v);
-  PlannerRun(p, env, grid, r, trace).run();
+  return true;
+}
+
+void conclude_run(const CoverageGrid& grid, RunResult& r) {
   r.visited_cells = grid.visited_cells();
   r.final_coverage = grid.coverage();
   if (r.status == Status::ok) r.pr = r.coverage_time / r.t_opt;
+}
+
+RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* trace) {
+  RunResult r;
+  std::optional<CoverageGrid> grid;
+  if (!prepare_run(p, env, grid, r)) return r;
+  PlannerRun(p, env, *grid, r, trace).run();
+  conclude_run(*grid, r);
   return r;
 }
 

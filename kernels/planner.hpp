@@ -1,6 +1,9 @@
 #pragma once
 // The entry point every caller uses: run one planner simulation.
+#include <optional>
 #include <string>
+
+#include "coverage_grid.hpp"
 
 #include "environment.hpp"
 #include "run_params.hpp"
@@ -17,5 +20,11 @@ std::string validate_run(const RunParams& p, const Environment& env);
 RunResult run_planner(const RunParams& p, const Environment& env);
 // The same, reporting every trajectory point to `trace` (may be null).
 RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* trace);
+
+// The two ends of a run, shared by run_planner and the lane driver: validate
+// and set up the grid and reference values (false: r says why it is invalid),
+// and fill the coverage outputs once the run has ended.
+bool prepare_run(const RunParams& p, const Environment& env, std::optional<CoverageGrid>& grid, RunResult& r);
+void conclude_run(const CoverageGrid& grid, RunResult& r);
 
 }  // namespace chaosweep

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "control.hpp"
 #include "metrics.hpp"
@@ -56,86 +57,131 @@ void PlannerRun::end(Status s, const char* why) {
   if (s == Status::ok) r_.coverage_time = t_;
 }
 
-bool PlannerRun::after_move(double dt, SegmentKind kind) {
-  t_ += dt;
-  if (trace_) trace_->point({t_, robot_.x(), robot_.y(), kind, ds_});
-  if (grid_.visited_cells() != last_visited_) {
-    last_visited_ = grid_.visited_cells();
-    t_last_new_ = t_;
-  }
-  if (!std::isfinite(robot_.x()) || !std::isfinite(robot_.y())) end(Status::diverged, "non-finite position");
-  else if (grid_.visited_cells() >= needed_) end(Status::ok);
-  else if (t_ >= budget_) end(Status::timeout);
-  else if (p_.stuck_time > 0 && t_ - t_last_new_ >= p_.stuck_time) end(Status::stuck);
-  return ended_;
-}
 
-void PlannerRun::run() {
+
+void PlannerRun::start() {
   // The start cell alone may already satisfy a tiny dc.
   if (grid_.visited_cells() >= needed_) end(Status::ok);
-  else if (p_.planner == Planner::logistic) logistic_loop();
-  else arnold_loop();
+  else if (p_.planner == Planner::arnold) begin_segment();
+}
+
+void PlannerRun::finish() {
   r_.t_end = t_;
   r_.final_x = robot_.x();
   r_.final_y = robot_.y();
   r_.final_ds_index = ds_;
 }
 
-// ------------------------------------------------------------- Algorithm 1
-
-void PlannerRun::arnold_loop() {
-  const bool zoning = p_.map_zoning != 0, switching = p_.index_switching != 0;
-  while (!ended_) {
-    if (zoning) grid_.begin_window();
-    const long c_u = grid_.free_cells() - grid_.visited_cells();  // unvisited before the segment
-    const long c_n = arnold_segment();
-    if (ended_) break;
-    const bool keep_exploring =
-        !zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), c_u, grid_.free_cells(), p_.c);
-    if (!keep_exploring) {
-      map_zoning();
-    } else if (switching && c_n <= p_.switch_min_new) {
-      ds_ = next_ds_index(ds_);
-      ++r_.index_switches;
-    }
-  }
+void PlannerRun::run() {
+  start();
+  if (p_.planner == Planner::logistic) logistic_loop();
+  else
+    while (!ended_) arnold_step();
+  finish();
 }
 
-long PlannerRun::arnold_segment() {
+// ------------------------------------------------------------- Algorithm 1
+
+void PlannerRun::begin_segment() {
   ++r_.segments;
-  const long before = grid_.visited_cells();
-  for (int i = 0; i < p_.niter && !ended_; ++i) arnold_step();
-  return grid_.visited_cells() - before;
+  if (p_.map_zoning) grid_.begin_window();
+  seg_c_u_ = grid_.free_cells() - grid_.visited_cells();  // unvisited before the segment
+  seg_before_ = grid_.visited_cells();
+  seg_step_ = 0;
+}
+
+void PlannerRun::end_segment() {
+  const long c_n = grid_.visited_cells() - seg_before_;
+  const bool keep_exploring =
+      !p_.map_zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), seg_c_u_, grid_.free_cells(), p_.c);
+  if (!keep_exploring) {
+    map_zoning();
+  } else if (p_.index_switching && c_n <= p_.switch_min_new) {
+    ds_ = next_ds_index(ds_);
+    ++r_.index_switches;
+  }
+  if (!ended_) begin_segment();
+}
+
+PlannerRun::LaneProgress PlannerRun::lane_progress() const {
+  LaneProgress g;
+  g.x = robot_.x();
+  g.y = robot_.y();
+  g.t = t_;
+  g.fh = p_.f * h_;  // the clock step after_move adds
+  g.budget = budget_;
+  g.stuck_time = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
+  g.t_last_new = t_last_new_;
+  g.steps = r_.steps;
+  g.seg_step = seg_step_;
+  g.niter = p_.niter;
+  g.fast = p_.boundary == Boundary::mirror && env_.obstacles.empty() && trace_ == nullptr;
+  // The band mirror_eq7 keeps: triangle_fold(u, 0 + fo, lx - fo).
+  g.lo_x = 0.0 + p_.fo;
+  g.hi_x = env_.lx - p_.fo;
+  g.lo_y = 0.0 + p_.fo;
+  g.hi_y = env_.ly - p_.fo;
+  g.inv_cell = grid_.inv_cell_size();
+  g.max_i = grid_.nx() - 1;
+  g.max_j = grid_.ny() - 1;
+  g.cell_i = grid_.cell_x(g.x);
+  g.cell_j = grid_.cell_y(g.y);
+  return g;
+}
+
+void PlannerRun::set_lane_progress(double x, double y, double t, std::int64_t steps, int seg_step) {
+  robot_.set_position(x, y);
+  t_ = t;
+  r_.steps = steps;
+  seg_step_ = seg_step;
+}
+
+PlannerRun::ArnoldLane PlannerRun::arnold_lane() const {
+  return {u_, p_.A, p_.B, p_.C, h_, p_.f * p_.v * h_, ds_};
+}
+
+bool PlannerRun::point_done(double dt) {
+  if (after_move(dt, SegmentKind::arnold)) return true;
+  if (++seg_step_ < p_.niter) return false;
+  end_segment();
+  return true;
+}
+
+bool PlannerRun::arnold_step_done(const Vec3<double>& u, double dX, double dY) {
+  robot_.move(dX, dY);
+  u_ = u;
+  r_.steps += 1;
+  if (!finite(u_)) {
+    end(Status::diverged, "non-finite Arnold state");
+    return true;
+  }
+  return point_done(p_.f * h_);
 }
 
 void PlannerRun::arnold_step() {
   const HeadingSelect<double> hs = heading_select(ds_);
   const double h_pos = p_.f * p_.v * h_;
   const Rk4Step<double> full = rk4_step(u_, k_, hs, h_, h_pos);
-  double dt_used = h_;
   if (p_.integrator == Integrator::rk4_doubling) {
     const double hh = 0.5 * h_, hh_pos = 0.5 * h_pos;
     const Rk4Step<double> a = rk4_step(u_, k_, hs, hh, hh_pos);
     const Rk4Step<double> b = rk4_step(a.u, k_, hs, hh, hh_pos);
     if (std::fabs(full.dX - (a.dX + b.dX)) > p_.ep || std::fabs(full.dY - (a.dY + b.dY)) > p_.ep) {
-      // Accept the two half steps and keep dt/2 for the rest of the run.
+      // Accept the two half steps (one point) and keep dt/2 for the rest of the run.
       robot_.move(a.dX, a.dY);
       robot_.move(b.dX, b.dY);
       u_ = b.u;
+      const double dt_used = h_;
       h_ = hh;
       r_.steps += 2;
       ++r_.dt_halvings;
       if (!finite(u_)) return end(Status::diverged, "non-finite Arnold state");
-      if (after_move(p_.f * dt_used, SegmentKind::arnold)) return;
+      if (point_done(p_.f * dt_used)) return;
       if (h_ < p_.dt_min) end(Status::diverged, "step doubling shrank dt below dt_min");
       return;
     }
   }
-  robot_.move(full.dX, full.dY);
-  u_ = full.u;
-  r_.steps += 1;
-  if (!finite(u_)) return end(Status::diverged, "non-finite Arnold state");
-  after_move(p_.f * dt_used, SegmentKind::arnold);
+  arnold_step_done(full.u, full.dX, full.dY);
 }
 
 // ----------------------------------------------------- Logistic map only

@@ -3,6 +3,8 @@
 // (Algorithm 3, SystemScaler) with optional index switching, MapZoning
 // transits (Algorithms 2 and 4) and scaling, or Logistic-map segments only.
 // Scalar reference; the SIMD kernels reproduce its Arnold steps bit for bit.
+#include <cmath>
+
 #include "arnold_flow.hpp"
 #include "coverage_grid.hpp"
 #include "environment.hpp"
@@ -22,6 +24,37 @@ class PlannerRun {
              TraceSink* trace);
   void run();
 
+  // Step-driven use by the lane integrators, which compute fixed-step RK4
+  // steps of many runs at once: start(), then per step read arnold_lane(),
+  // hand back the step with arnold_step_done() until ended(), then finish().
+  struct ArnoldLane {
+    Vec3<double> u;
+    double A, B, C, h, h_pos;
+    int ds;
+  };
+  void start();
+  ArnoldLane arnold_lane() const;
+  // Applies one accepted Arnold step and, at the end of a segment, the
+  // decisions of Algorithm 1 (Eq. 5, index switching, MapZoning transits run
+  // here, scalar). True when the lane must reload arnold_lane(): a segment
+  // ended (DSindex may have changed) or the run ended.
+  bool arnold_step_done(const Vec3<double>& u, double dX, double dY);
+  bool ended() const { return ended_; }
+  void finish();
+
+  // What the lane fast path needs (see LaneArrays), and the progress it made
+  // handed back before the next full step.
+  struct LaneProgress {
+    double x, y, t, fh, budget, stuck_time, t_last_new;
+    std::int64_t steps;
+    int seg_step, niter;
+    bool fast;  // mirror boundary, no obstacles, no trace
+    double lo_x, hi_x, lo_y, hi_y, inv_cell;
+    int max_i, max_j, cell_i, cell_j;
+  };
+  LaneProgress lane_progress() const;
+  void set_lane_progress(double x, double y, double t, std::int64_t steps, int seg_step);
+
   // Single mechanisms, public so tests can drive them on hand-made cases.
   // Algorithm 2: try zones in order until one is reached.
   void map_zoning();
@@ -34,17 +67,18 @@ class PlannerRun {
   double time() const { return t_; }
 
  private:
-  // Algorithm 1's loop body for each planner.
-  void arnold_loop();
   void logistic_loop();
-  // Up to niter Arnold steps; returns the number of new cells.
-  long arnold_segment();
   long logistic_segment();
+  // One Arnold step of the scalar path (fixed step or step doubling).
   void arnold_step();
+  // After an Arnold point: clock, end checks, segment bookkeeping.
+  bool point_done(double dt);
+  void begin_segment();
+  void end_segment();
 
   // Moves the robot (already displaced by the caller), advances the clock by
   // dt and checks every way the run can end. Returns true when it ended.
-  bool after_move(double dt, SegmentKind kind);
+  [[gnu::always_inline]] inline bool after_move(double dt, SegmentKind kind);
   void end(Status s, const char* why = nullptr);
 
   const RunParams& p_;
@@ -66,7 +100,23 @@ class PlannerRun {
   LogisticMap logistic_;
   Zones zones_;
   bool ended_ = false;
+  int seg_step_ = 0;
+  long seg_before_ = 0, seg_c_u_ = 0;
 };
+
+inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
+  t_ += dt;
+  if (trace_) trace_->point({t_, robot_.x(), robot_.y(), kind, ds_});
+  if (grid_.visited_cells() != last_visited_) {
+    last_visited_ = grid_.visited_cells();
+    t_last_new_ = t_;
+  }
+  if (!std::isfinite(robot_.x()) || !std::isfinite(robot_.y())) end(Status::diverged, "non-finite position");
+  else if (grid_.visited_cells() >= needed_) end(Status::ok);
+  else if (t_ >= budget_) end(Status::timeout);
+  else if (p_.stuck_time > 0 && t_ - t_last_new_ >= p_.stuck_time) end(Status::stuck);
+  return ended_;
+}
 
 // The perturbed Arnold initial state of a run (SPEC 1, "Chaotic spread").
 Vec3<double> initial_state(const RunParams& p);

@@ -21,6 +21,12 @@ class RobotMotion {
 
   double x() const { return x_; }
   double y() const { return y_; }
+  // Position after steps the lane fast path applied (mirror boundary only:
+  // the unfolded position of the fold boundary is not touched).
+  void set_position(double x, double y) {
+    x_ = x;
+    y_ = y;
+  }
 
   // Puts the robot at (x, y) (a transit point, already kept clear of walls
   // and obstacles), marking the cells on the way.
@@ -31,7 +37,8 @@ class RobotMotion {
     mark(px, py);
   }
 
-  void move(double dx, double dy) {
+  // Always inlined: it runs once per step of every lane.
+  [[gnu::always_inline]] void move(double dx, double dy) {
     const double px = x_, py = y_;
     if (boundary_ == Boundary::mirror) {
       x_ = mirror_eq7(x_ + dx, 0.0, env_.lx, fo_);

@@ -41,12 +41,7 @@ inline void sincos(T x, T& s, T& c) {
              z, lane::splat<T>(c5));
   const T sin_r = fma(r * z, ps, r);
   const T cos_r = fma(z * z, pc, fma(lane::splat<T>(-0.5), z, lane::splat<T>(1.0)));
-  const auto q = lane::to_int(j);
-  const auto swap = (q & 1) != 0;
-  const T s_abs = lane::select(swap, cos_r, sin_r);
-  const T c_abs = lane::select(swap, sin_r, cos_r);
-  s = lane::select((q & 2) != 0, -s_abs, s_abs);
-  c = lane::select(((q + 1) & 2) != 0, -c_abs, c_abs);
+  lane::quadrant(j, sin_r, cos_r, s, c);
 }
 
 // x - 2*pi*round(x / 2*pi): maps an angle into [-pi, pi] so sincos stays in its

@@ -1,0 +1,47 @@
+#pragma once
+// The struct-of-arrays state the vector integrators read and write: one slot
+// per lane (= one run in flight). Plain arrays only, so the per-ISA kernel
+// files need nothing from the standard library.
+
+namespace chaosweep {
+
+struct LaneArrays {
+  static constexpr int max_lanes = 16;
+  int lanes = 0;
+  // Arnold state and step parameters per lane (ds as 1.0, 2.0, 3.0).
+  alignas(64) double x[max_lanes], y[max_lanes], z[max_lanes];
+  alignas(64) double A[max_lanes], B[max_lanes], C[max_lanes];
+  alignas(64) double h[max_lanes], h_pos[max_lanes], ds[max_lanes];
+  // The step's robot displacement, written by the integrator.
+  alignas(64) double dX[max_lanes], dY[max_lanes];
+
+  // Fast path (mirror boundary, no obstacles): the integrator also moves the
+  // robot and advances the clock when the step stays in its cell, inside the
+  // wall band, and triggers no end or segment check — the same operations the
+  // scalar PlannerRun would do. Any other step sets `flag` and is left to the
+  // sink, which redoes it in full.
+  alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
+  alignas(64) double budget[max_lanes], stuck_time[max_lanes], t_last_new[max_lanes];
+  alignas(64) double seg_step[max_lanes], niter[max_lanes], steps[max_lanes];
+  alignas(64) double lo_x[max_lanes], hi_x[max_lanes], lo_y[max_lanes], hi_y[max_lanes];
+  alignas(64) double inv_cell[max_lanes], max_i[max_lanes], max_j[max_lanes];
+  alignas(64) double cell_i[max_lanes], cell_j[max_lanes];
+  alignas(64) double fast[max_lanes];  // 1: the fast path applies to this lane
+  alignas(64) double flag[max_lanes];  // out: 1 when the sink must handle the step
+};
+
+// Consumes each computed step (boundaries, grid, decisions, refill) and
+// reports whether any lane is still active. Implemented in baseline code.
+class LaneSink {
+ public:
+  virtual ~LaneSink();
+  virtual bool post_step() = 0;
+};
+
+// One entry point per compiled target (lane_kernel_<target>.cpp): integrates
+// fixed-step RK4 steps of every lane until the sink reports no active lane.
+void integrate_lanes_scalar(LaneArrays& a, LaneSink& sink);
+void integrate_lanes_avx2(LaneArrays& a, LaneSink& sink);
+void integrate_lanes_avx512(LaneArrays& a, LaneSink& sink);
+
+}  // namespace chaosweep

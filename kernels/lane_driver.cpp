@@ -1,0 +1,193 @@
+#include "lane_driver.hpp"
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "lane_arrays.hpp"
+#include "planner.hpp"
+#include "planner_run.hpp"
+
+namespace chaosweep {
+
+LaneSink::~LaneSink() = default;
+
+bool lane_eligible(const RunParams& p) {
+  return p.planner == Planner::arnold && p.integrator == Integrator::rk4;
+}
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+void record_error(RunResult& r, const char* what) {
+  r = RunResult{};
+  r.status = Status::error;
+  r.message = what;
+}
+
+class LaneDriver final : public LaneSink {
+ public:
+  LaneDriver(const BatchItem* items, RunResult* results, std::vector<std::size_t> queue, int lanes)
+      : items_(items), results_(results), queue_(std::move(queue)), slots_(std::size_t(lanes)) {
+    a_.lanes = lanes;
+    for (int l = 0; l < lanes; ++l) load(l);
+  }
+
+  bool post_step() override {
+    bool any = false;
+    for (int l = 0; l < a_.lanes; ++l) {
+      Slot& s = slots_[std::size_t(l)];
+      if (!s.run) continue;
+      if (a_.flag[l] == 0.0) {  // the integrator already applied this step
+        any = true;
+        continue;
+      }
+      try {
+        s.run->set_lane_progress(a_.X[l], a_.Y[l], a_.t[l], std::int64_t(a_.steps[l]), int(a_.seg_step[l]));
+        if (s.run->arnold_step_done({a_.x[l], a_.y[l], a_.z[l]}, a_.dX[l], a_.dY[l]) && s.run->ended()) {
+          complete(s);
+          load(l);
+        } else {
+          write_lane(l, *s.run);
+        }
+      } catch (const std::exception& e) {
+        record_error(results_[s.item], e.what());
+        s.run.reset();
+        load(l);
+      }
+      any = any || s.run != nullptr;
+    }
+    return any;
+  }
+
+  LaneArrays& arrays() { return a_; }
+  bool any_active() const {
+    for (const Slot& s : slots_)
+      if (s.run) return true;
+    return false;
+  }
+
+ private:
+  struct Slot {
+    std::size_t item = 0;
+    std::optional<CoverageGrid> grid;
+    std::unique_ptr<PlannerRun> run;
+    clock_type::time_point t0;
+  };
+
+  void write_lane(int l, const PlannerRun& run) {
+    write_lane(l, run.arnold_lane());
+    const PlannerRun::LaneProgress g = run.lane_progress();
+    a_.X[l] = g.x;
+    a_.Y[l] = g.y;
+    a_.t[l] = g.t;
+    a_.fh[l] = g.fh;
+    a_.budget[l] = g.budget;
+    a_.stuck_time[l] = g.stuck_time;
+    a_.t_last_new[l] = g.t_last_new;
+    a_.steps[l] = double(g.steps);
+    a_.seg_step[l] = g.seg_step;
+    a_.niter[l] = g.niter;
+    a_.fast[l] = g.fast ? 1.0 : 0.0;
+    a_.lo_x[l] = g.lo_x;
+    a_.hi_x[l] = g.hi_x;
+    a_.lo_y[l] = g.lo_y;
+    a_.hi_y[l] = g.hi_y;
+    a_.inv_cell[l] = g.inv_cell;
+    a_.max_i[l] = g.max_i;
+    a_.max_j[l] = g.max_j;
+    a_.cell_i[l] = g.cell_i;
+    a_.cell_j[l] = g.cell_j;
+  }
+
+  void write_lane(int l, const PlannerRun::ArnoldLane& v) {
+    a_.x[l] = v.u.x;
+    a_.y[l] = v.u.y;
+    a_.z[l] = v.u.z;
+    a_.A[l] = v.A;
+    a_.B[l] = v.B;
+    a_.C[l] = v.C;
+    a_.h[l] = v.h;
+    a_.h_pos[l] = v.h_pos;
+    a_.ds[l] = double(v.ds);
+  }
+
+  void complete(Slot& s) {
+    s.run->finish();
+    RunResult& r = results_[s.item];
+    conclude_run(*s.grid, r);
+    r.wall_time = std::chrono::duration<double>(clock_type::now() - s.t0).count();
+    s.run.reset();
+  }
+
+  // Puts the next run that needs integrating into lane l (or leaves it idle).
+  void load(int l) {
+    Slot& s = slots_[std::size_t(l)];
+    while (next_ < queue_.size()) {
+      s.item = queue_[next_++];
+      s.t0 = clock_type::now();
+      RunResult& r = results_[s.item];
+      const BatchItem& it = items_[s.item];
+      try {
+        if (!prepare_run(*it.params, *it.env, s.grid, r)) continue;  // invalid: recorded
+        s.run = std::make_unique<PlannerRun>(*it.params, *it.env, *s.grid, r, nullptr);
+        s.run->start();
+        if (s.run->ended()) {
+          complete(s);
+          continue;
+        }
+        write_lane(l, *s.run);
+        return;
+      } catch (const std::exception& e) {
+        record_error(r, e.what());
+        s.run.reset();
+      }
+    }
+    // Idle lane: harmless numbers, never read back.
+    write_lane(l, {{0, 0, 0}, 0, 0, 0, 0, 0, 3});
+    a_.fast[l] = 0.0;
+    a_.X[l] = a_.Y[l] = a_.t[l] = a_.fh[l] = a_.steps[l] = a_.seg_step[l] = 0.0;
+    a_.budget[l] = a_.stuck_time[l] = a_.niter[l] = 1.0;
+    a_.t_last_new[l] = a_.lo_x[l] = a_.hi_x[l] = a_.lo_y[l] = a_.hi_y[l] = 0.0;
+    a_.inv_cell[l] = 1.0;
+    a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
+  }
+
+  const BatchItem* items_;
+  RunResult* results_;
+  std::vector<std::size_t> queue_;
+  std::size_t next_ = 0;
+  std::vector<Slot> slots_;
+  LaneArrays a_;
+};
+
+}  // namespace
+
+void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target) {
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (lane_eligible(*items[i].params)) {
+      queue.push_back(i);
+      continue;
+    }
+    const auto t0 = clock_type::now();
+    try {
+      results[i] = run_planner(*items[i].params, *items[i].env);
+    } catch (const std::exception& e) {
+      record_error(results[i], e.what());
+    }
+    results[i].wall_time = std::chrono::duration<double>(clock_type::now() - t0).count();
+  }
+  if (queue.empty()) return;
+  LaneDriver driver(items, results, std::move(queue), lane_count(target));
+  if (!driver.any_active()) return;
+  switch (target) {
+    case SimdTarget::scalar: integrate_lanes_scalar(driver.arrays(), driver); break;
+    case SimdTarget::avx2: integrate_lanes_avx2(driver.arrays(), driver); break;
+    case SimdTarget::avx512: integrate_lanes_avx512(driver.arrays(), driver); break;
+  }
+}
+
+}  // namespace chaosweep

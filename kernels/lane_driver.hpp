@@ -1,0 +1,26 @@
+#pragma once
+// Runs a batch of runs through the lane integrators: each lane holds one run,
+// and when a run ends the next run of the batch takes its lane at once.
+// Runs the lanes cannot take (step doubling, the Logistic planner) run on the
+// scalar reference path. Results land in the slot of their run, whatever the
+// lane, target or order: a pure function of each run's parameters.
+#include <cstddef>
+
+#include "environment.hpp"
+#include "run_params.hpp"
+#include "simd_target.hpp"
+
+namespace chaosweep {
+
+struct BatchItem {
+  const RunParams* params;
+  const Environment* env;
+};
+
+// results[i] for items[i]; never throws for a failing run (status error).
+void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target);
+
+// True when a run goes through the lanes (fixed-step RK4, Arnold planner).
+bool lane_eligible(const RunParams& p);
+
+}  // namespace chaosweep

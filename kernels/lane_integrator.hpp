@@ -1,0 +1,80 @@
+#pragma once
+// The lane loop shared by every width: load N interleaved vectors of W lanes
+// from the arrays, take one RK4 step (the same arithmetic as the scalar
+// reference, see arnold_flow.hpp), store, let the sink handle the rest.
+// Include only from lane_kernel_<target>.cpp.
+#include "arnold_flow.hpp"
+#include "lane_arrays.hpp"
+
+namespace chaosweep {
+
+template <class V>
+inline V lane_load(const double* p) {
+  V v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <class V>
+inline void lane_store(double* p, V v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+
+// The step's common case, vectorised (see LaneArrays). Mirrors
+// RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
+// operation for operation, so a lane's result never depends on the path.
+template <class V>
+inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
+  const V zero = lane::splat<V>(0.0), one = lane::splat<V>(1.0);
+  const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
+  const V X1 = X + s.dX, Y1 = Y + s.dY, t1 = t + lane_load<V>(a.fh + o);
+  const V inv = lane_load<V>(a.inv_cell + o);
+  const V gi = X1 * inv, gj = Y1 * inv;
+  V ci = lane::select(gi > zero, lane::trunc(gi), zero);
+  V cj = lane::select(gj > zero, lane::trunc(gj), zero);
+  const V mi = lane_load<V>(a.max_i + o), mj = lane_load<V>(a.max_j + o);
+  ci = lane::select(ci < mi, ci, mi);
+  cj = lane::select(cj < mj, cj, mj);
+  const V seg = lane_load<V>(a.seg_step + o) + one;
+  const auto inside = (X1 >= lane_load<V>(a.lo_x + o)) & (X1 <= lane_load<V>(a.hi_x + o)) &
+                      (Y1 >= lane_load<V>(a.lo_y + o)) & (Y1 <= lane_load<V>(a.hi_y + o));
+  const auto quiet = inside & (lane_load<V>(a.fast + o) == one) & (ci == lane_load<V>(a.cell_i + o)) &
+                     (cj == lane_load<V>(a.cell_j + o)) & (t1 < lane_load<V>(a.budget + o)) &
+                     ((t1 - lane_load<V>(a.t_last_new + o)) < lane_load<V>(a.stuck_time + o)) &
+                     (seg < lane_load<V>(a.niter + o)) & (s.u.x == s.u.x) & (s.u.y == s.u.y) & (s.u.z == s.u.z);
+  lane_store(a.X + o, lane::select(quiet, X1, X));
+  lane_store(a.Y + o, lane::select(quiet, Y1, Y));
+  lane_store(a.t + o, lane::select(quiet, t1, t));
+  lane_store(a.seg_step + o, lane::select(quiet, seg, seg - one));
+  lane_store(a.steps + o, lane_load<V>(a.steps + o) + lane::select(quiet, one, zero));
+  lane_store(a.flag + o, lane::select(quiet, zero, one));
+}
+
+template <class V, int N>
+inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
+  constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V (Twin<v8d>: 16)
+  do {
+    for (int g = 0; g < a.lanes; g += w * N) {
+      Rk4Step<V> s[N];
+      for (int k = 0; k < N; ++k) {
+        const int o = g + k * w;
+        const Vec3<V> u{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)};
+        const ArnoldCoeffs<V> c{lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
+        const V ds = lane_load<V>(a.ds + o);
+        const HeadingSelect<V> hs{ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
+        s[k] = rk4_step(u, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o));
+      }
+      for (int k = 0; k < N; ++k) {
+        const int o = g + k * w;
+        lane_store(a.x + o, s[k].u.x);
+        lane_store(a.y + o, s[k].u.y);
+        lane_store(a.z + o, s[k].u.z);
+        lane_store(a.dX + o, s[k].dX);
+        lane_store(a.dY + o, s[k].dY);
+        fast_path<V>(a, o, s[k]);
+      }
+    }
+  } while (sink.post_step());
+}
+
+}  // namespace chaosweep
