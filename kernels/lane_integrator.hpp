@@ -50,8 +50,10 @@ inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   lane_store(a.flag + o, lane::select(quiet, zero, one));
 }
 
+// flatten: the step and the fast path inline into one loop body, so the
+// vectors stay in registers instead of passing through memory.
 template <class V, int N>
-inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
+[[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V (Twin<v8d>: 16)
   do {
     for (int g = 0; g < a.lanes; g += w * N) {

@@ -2,12 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "environment_loader.hpp"
 #include "h5_store.hpp"
 #include "json_writer.hpp"
 #include "result_columns.hpp"
+#include "progress.hpp"
+#include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 #include "sweep_spec.hpp"
 #include "test_util.hpp"
@@ -253,6 +256,74 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
   EXPECT_EQ(rows[1].result.status, Status::invalid);
   EXPECT_NE(rows[1].result.message.find("inside obstacle"), std::string::npos);
   EXPECT_EQ(rows[2].result.status, Status::ok);
+}
+
+TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndChunks) {
+  // Every technique set, both boundaries, obstacles, the scalar-only paths
+  // (step doubling, Logistic) and an invalid run, mixed in one batch.
+  const SweepSpec s = parse_sweep_spec(R"(
+case = [
+  { label = "original" },
+  { label = "fold", boundary = "fold" },
+  { label = "is", index_switching = 1, ds_index = 1 },
+  { label = "mz", map_zoning = 1, c = 0.8, env = "five_squares", start = [4.8, 1.6] },
+  { label = "mz-is-sc", map_zoning = 1, index_switching = 1, c = 0.5, f = 1.7, env = "one_square" },
+  { label = "jitter", ic_jitter = 1e-6, seed = 3 },
+  { label = "doubling", integrator = "rk4-doubling" },
+  { label = "logistic", planner = "logistic" },
+  { label = "invalid", env = "one_square", start = [8, 8] },
+  { label = "points", sampling = "points", f = 4 },
+]
+[fixed]
+size = 16
+sr = 1
+max_time = 1500
+niter = 200
+[axes]
+A = [0.45, 0.5]
+)",
+                                       "x");
+  EnvironmentCache cache;
+  std::vector<RunTuple> tuples;
+  for (std::int64_t i = 0; i < s.size(); ++i) tuples.push_back(resolve_run(i, s.run(i), cache));
+  // The scalar reference: one PlannerRun per run, no lanes.
+  std::vector<RunRow> reference;
+  for (const RunTuple& t : tuples) reference.push_back(evaluate(t));
+  int compared = 0;
+  for (SimdTarget target : {SimdTarget::scalar, SimdTarget::avx2, SimdTarget::avx512}) {
+    if (!cpu_supports(target)) continue;  // widths this CPU cannot run are tested where it can
+    for (int threads : {1, 2})
+      for (std::int64_t chunk : {1, 7, 0}) {
+        SweepOptions opt;
+        opt.target = target;
+        opt.threads = threads;
+        opt.chunk_size = chunk;
+        std::string diff;
+        EXPECT_TRUE(same_rows(reference, run_tuples(tuples, opt), diff))
+            << to_string(target) << ", " << threads << " threads, chunk " << chunk << ": " << diff;
+        ++compared;
+      }
+  }
+  EXPECT_GE(compared, 6);
+  int ok = 0;
+  for (const RunRow& r : reference) ok += r.result.status == Status::ok;
+  EXPECT_GT(ok, 5);  // most of these runs reach dc: the comparison covers whole runs
+  EXPECT_EQ(reference[16].result.status, Status::invalid);
+}
+
+TEST(SimdChoice, HonoursAndChecksChaosweepSimd) {
+  setenv("CHAOSWEEP_SIMD", "scalar", 1);
+  EXPECT_EQ(selected_simd_target(), SimdTarget::scalar);
+  setenv("CHAOSWEEP_SIMD", "avx3", 1);
+  EXPECT_THROW(selected_simd_target(), std::runtime_error);
+  unsetenv("CHAOSWEEP_SIMD");
+  EXPECT_EQ(selected_simd_target(), best_simd_target());
+}
+
+TEST(Progress, LineShowsDoneTotalRateEtaAndFailures) {
+  EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0), "250/1000 runs (25.0%), 25 runs/s, ETA 30s, 12 not ok");
+  EXPECT_EQ(ProgressReporter::line(1000, 1000, 0, 100.0), "1000/1000 runs (100.0%), 10 runs/s, ETA 0s, 0 not ok");
+  EXPECT_EQ(ProgressReporter::line(10, 100000, 0, 1.0), "10/100000 runs (0.0%), 10 runs/s, ETA 2h46m, 0 not ok");
 }
 
 // ------------------------------------------------------------------- store

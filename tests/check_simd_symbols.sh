@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The per-ISA kernel objects (lane_kernel_avx2/avx512) are compiled for newer
+# CPUs than the rest. If one of them emitted an inline function that baseline
+# code also uses (a weak symbol of, say, std::vector<double> or sincos<double>),
+# the linker could keep that copy for the whole program and an older CPU would
+# crash with SIGILL. Pass: every global symbol they define is vector-typed or
+# their own entry point.
+set -euo pipefail
+status=0
+checked=0
+for obj in "$@"; do
+  case "$obj" in *lane_kernel_avx*) ;; *) continue ;; esac
+  checked=$((checked + 1))
+  while read -r kind name; do
+    case "$name" in
+      *"__vector("*|*"Twin<"*|"chaosweep::integrate_lanes_avx"*) ;;
+      *) echo "FAIL: $obj defines $kind $name"; status=1 ;;
+    esac
+  done < <(nm -C --defined-only "$obj" | awk '$2 ~ /^[A-Z]$/ && $2 != "R" { $1 = ""; sub(/^ /, ""); k = $1; $1 = ""; sub(/^ /, ""); print k, $0 }')
+done
+if [[ $checked -ne 2 ]]; then
+  echo "FAIL: expected 2 per-ISA kernel objects, found $checked"
+  exit 1
+fi
+[[ $status -eq 0 ]] && echo "ok: per-ISA kernel objects define only vector-typed symbols"
+exit $status
