@@ -18,66 +18,51 @@ void preload_environments(const SweepSpec& spec, EnvironmentCache& cache) {
 
 namespace {
 
-// Big enough for the lanes to refill many times per task, small enough that
-// every thread gets several tasks to steal.
-std::int64_t chunk_for(const SweepOptions& opt, std::int64_t n, int threads) {
-  if (opt.chunk_size > 0) return opt.chunk_size;
-  const std::int64_t lanes = lane_count(opt.target);
-  return std::clamp<std::int64_t>(n / (8 * std::max(threads, 1)), lanes, 16 * lanes);
-}
-
-// Runs rows[first, first + n): a pure function of the tuples in each slot.
-void run_chunk(std::vector<RunRow>& rows, std::int64_t first, std::int64_t n, const SweepOptions& opt) {
-  std::vector<BatchItem> items(static_cast<std::size_t>(n));
-  std::vector<RunResult> results(static_cast<std::size_t>(n));
-  for (std::int64_t k = 0; k < n; ++k) {
-    const RunTuple& t = rows[std::size_t(first + k)].tuple;
-    items[std::size_t(k)] = {&t.params, t.env.get()};
-  }
-  run_batch(items.data(), results.data(), std::size_t(n), opt.target);
-  std::int64_t failed = 0;
-  for (std::int64_t k = 0; k < n; ++k) {
-    failed += results[std::size_t(k)].status != Status::ok;
-    rows[std::size_t(first + k)].result = std::move(results[std::size_t(k)]);
-  }
-  if (opt.progress) {
-    opt.progress->done += n;
-    opt.progress->failed += failed;
-  }
-}
-
+// Runs rows[*] (tuples set): every worker of the arena drives its own lanes,
+// pulling the next run from one shared queue as soon as a lane frees up, so
+// lanes idle only at the end of the batch. Each result is a pure function of
+// its tuple and lands in its row's slot.
 void run_rows(std::vector<RunRow>& rows, const SweepOptions& opt, tbb::task_arena& arena) {
-  const auto n = std::int64_t(rows.size());
-  const std::int64_t chunk = chunk_for(opt, n, arena.max_concurrency());
-  const std::int64_t chunks = (n + chunk - 1) / chunk;
+  const std::size_t n = rows.size();
+  std::vector<BatchItem> items(n);
+  std::vector<RunResult> results(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    items[k] = {&rows[k].tuple.params, rows[k].tuple.env.get()};
+    results[k].status = Status::error;  // stays so only if a worker itself fails
+    results[k].message = "not run: its worker failed";
+  }
+  RunQueue queue{items.data(), results.data(), n};
+  if (opt.progress) {
+    queue.done = &opt.progress->done;
+    queue.not_ok = &opt.progress->failed;
+  }
+  const int workers = std::max(1, arena.max_concurrency());
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, chunks, 1), [&](const tbb::blocked_range<std::int64_t>& r) {
-      for (std::int64_t c = r.begin(); c != r.end(); ++c) {
-        const std::int64_t first = c * chunk;
-        // run_batch records every failing run itself; this only guards
-        // against a failure of the chunk's own bookkeeping (e.g. memory).
-        try {
-          run_chunk(rows, first, std::min(chunk, n - first), opt);
-        } catch (const std::exception& e) {
-          for (std::int64_t k = first; k < std::min(first + chunk, n); ++k) {
-            rows[std::size_t(k)].result = RunResult{};
-            rows[std::size_t(k)].result.status = Status::error;
-            rows[std::size_t(k)].result.message = e.what();
-          }
-        }
+    tbb::parallel_for(0, workers, [&](int) {
+      // A failure of a worker's own bookkeeping (e.g. memory) leaves its
+      // in-flight runs marked error; the other workers go on.
+      try {
+        run_queue(queue, opt.target);
+      } catch (const std::exception&) {
       }
     });
   });
+  for (std::size_t k = 0; k < n; ++k) rows[k].result = std::move(results[k]);
 }
 
 }  // namespace
 
 std::vector<RunRow> run_tuples(const std::vector<RunTuple>& tuples, const SweepOptions& opt) {
   tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
-  std::vector<RunRow> rows;
-  for (const RunTuple& t : tuples) rows.push_back({t, {}});
-  run_rows(rows, opt, arena);
-  return rows;
+  std::vector<RunRow> all, rows;
+  for (std::size_t first = 0; first < tuples.size(); first += std::size_t(opt.batch_size)) {
+    rows.clear();
+    for (std::size_t k = first; k < std::min(tuples.size(), first + std::size_t(opt.batch_size)); ++k)
+      rows.push_back({tuples[k], {}});
+    run_rows(rows, opt, arena);
+    all.insert(all.end(), rows.begin(), rows.end());
+  }
+  return all;
 }
 
 void run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink) {

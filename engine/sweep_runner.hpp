@@ -1,9 +1,9 @@
 #pragma once
 // Fans the runs of a spec out over oneTBB and hands result rows back in
-// run_id order, a batch at a time. Only parallelises: each task runs a chunk
-// of runs through the lane driver (kernels/lane_driver.hpp), whose results
-// land in their runs' slots, so the output never depends on the thread
-// count, the chunking or the kernel width.
+// run_id order, a batch at a time. Only parallelises: each worker drives its
+// own lanes (kernels/lane_driver.hpp) from a shared queue of the batch's
+// runs; results land in their runs' slots, so the output never depends on
+// the thread count, on which lane ran what, or on the kernel width.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -19,9 +19,8 @@ namespace chaosweep {
 struct SweepOptions {
   int threads = 0;                    // 0: all cores
   std::int64_t batch_size = 4096;     // rows handed to the sink at once (the flush unit)
-  std::int64_t chunk_size = 0;        // runs per TBB task; 0: chosen from lanes and threads
   SimdTarget target = best_simd_target();
-  ProgressCounters* progress = nullptr;  // bumped as chunks complete
+  ProgressCounters* progress = nullptr;  // bumped as runs complete
 };
 
 using RowSink = std::function<void(const std::vector<RunRow>&)>;

@@ -27,10 +27,20 @@ void record_error(RunResult& r, const char* what) {
   r.message = what;
 }
 
+// Runs the lanes cannot take (step doubling, the Logistic planner).
+void run_scalar(const BatchItem& it, RunResult& r) {
+  const auto t0 = clock_type::now();
+  try {
+    r = run_planner(*it.params, *it.env);
+  } catch (const std::exception& e) {
+    record_error(r, e.what());
+  }
+  r.wall_time = std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+
 class LaneDriver final : public LaneSink {
  public:
-  LaneDriver(const BatchItem* items, RunResult* results, std::vector<std::size_t> queue, int lanes)
-      : items_(items), results_(results), queue_(std::move(queue)), slots_(std::size_t(lanes)) {
+  LaneDriver(RunQueue& queue, int lanes) : q_(queue), items_(queue.items), results_(queue.results), slots_(std::size_t(lanes)) {
     a_.lanes = lanes;
     for (int l = 0; l < lanes; ++l) load(l);
   }
@@ -55,6 +65,7 @@ class LaneDriver final : public LaneSink {
       } catch (const std::exception& e) {
         record_error(results_[s.item], e.what());
         s.run.reset();
+        count(results_[s.item]);
         load(l);
       }
       any = any || s.run != nullptr;
@@ -120,18 +131,33 @@ class LaneDriver final : public LaneSink {
     conclude_run(*s.grid, r);
     r.wall_time = std::chrono::duration<double>(clock_type::now() - s.t0).count();
     s.run.reset();
+    count(r);
+  }
+
+  void count(const RunResult& r) {
+    if (q_.done) *q_.done += 1;
+    if (q_.not_ok && r.status != Status::ok) *q_.not_ok += 1;
   }
 
   // Puts the next run that needs integrating into lane l (or leaves it idle).
   void load(int l) {
     Slot& s = slots_[std::size_t(l)];
-    while (next_ < queue_.size()) {
-      s.item = queue_[next_++];
+    for (;;) {
+      s.item = q_.next.fetch_add(1);
+      if (s.item >= q_.n) break;
       s.t0 = clock_type::now();
       RunResult& r = results_[s.item];
       const BatchItem& it = items_[s.item];
+      if (!lane_eligible(*it.params)) {  // scalar reference path, right here
+        run_scalar(it, r);
+        count(r);
+        continue;
+      }
       try {
-        if (!prepare_run(*it.params, *it.env, s.grid, r)) continue;  // invalid: recorded
+        if (!prepare_run(*it.params, *it.env, s.grid, r)) {  // invalid: recorded
+          count(r);
+          continue;
+        }
         s.run = std::make_unique<PlannerRun>(*it.params, *it.env, *s.grid, r, nullptr);
         s.run->start();
         if (s.run->ended()) {
@@ -143,6 +169,7 @@ class LaneDriver final : public LaneSink {
       } catch (const std::exception& e) {
         record_error(r, e.what());
         s.run.reset();
+        count(r);
       }
     }
     // Idle lane: harmless numbers, never read back.
@@ -155,39 +182,28 @@ class LaneDriver final : public LaneSink {
     a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
   }
 
+  RunQueue& q_;
   const BatchItem* items_;
   RunResult* results_;
-  std::vector<std::size_t> queue_;
-  std::size_t next_ = 0;
   std::vector<Slot> slots_;
   LaneArrays a_;
 };
 
 }  // namespace
 
-void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target) {
-  std::vector<std::size_t> queue;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (lane_eligible(*items[i].params)) {
-      queue.push_back(i);
-      continue;
-    }
-    const auto t0 = clock_type::now();
-    try {
-      results[i] = run_planner(*items[i].params, *items[i].env);
-    } catch (const std::exception& e) {
-      record_error(results[i], e.what());
-    }
-    results[i].wall_time = std::chrono::duration<double>(clock_type::now() - t0).count();
-  }
-  if (queue.empty()) return;
-  LaneDriver driver(items, results, std::move(queue), lane_count(target));
+void run_queue(RunQueue& queue, SimdTarget target) {
+  LaneDriver driver(queue, lane_count(target));
   if (!driver.any_active()) return;
   switch (target) {
     case SimdTarget::scalar: integrate_lanes_scalar(driver.arrays(), driver); break;
     case SimdTarget::avx2: integrate_lanes_avx2(driver.arrays(), driver); break;
     case SimdTarget::avx512: integrate_lanes_avx512(driver.arrays(), driver); break;
   }
+}
+
+void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target) {
+  RunQueue queue{items, results, n};
+  run_queue(queue, target);
 }
 
 }  // namespace chaosweep

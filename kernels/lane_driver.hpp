@@ -4,7 +4,9 @@
 // Runs the lanes cannot take (step doubling, the Logistic planner) run on the
 // scalar reference path. Results land in the slot of their run, whatever the
 // lane, target or order: a pure function of each run's parameters.
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 
 #include "environment.hpp"
 #include "run_params.hpp"
@@ -19,6 +21,20 @@ struct BatchItem {
 
 // results[i] for items[i]; never throws for a failing run (status error).
 void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target);
+
+// Runs shared by several workers: each worker's lanes take the next run from
+// `next` as soon as a lane frees up, so lanes idle only at the very end.
+// `done` (optional) counts finished runs and `not_ok` those not ok, for
+// progress reports.
+struct RunQueue {
+  const BatchItem* items;
+  RunResult* results;
+  std::size_t n;
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::int64_t>* done = nullptr;
+  std::atomic<std::int64_t>* not_ok = nullptr;
+};
+void run_queue(RunQueue& queue, SimdTarget target);
 
 // True when a run goes through the lanes (fixed-step RK4, Arnold planner).
 bool lane_eligible(const RunParams& p);

@@ -258,7 +258,7 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
   EXPECT_EQ(rows[2].result.status, Status::ok);
 }
 
-TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndChunks) {
+TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries, obstacles, the scalar-only paths
   // (step doubling, Logistic) and an invalid run, mixed in one batch.
   const SweepSpec s = parse_sweep_spec(R"(
@@ -293,14 +293,14 @@ A = [0.45, 0.5]
   for (SimdTarget target : {SimdTarget::scalar, SimdTarget::avx2, SimdTarget::avx512}) {
     if (!cpu_supports(target)) continue;  // widths this CPU cannot run are tested where it can
     for (int threads : {1, 2})
-      for (std::int64_t chunk : {1, 7, 0}) {
+      for (std::int64_t batch : {1, 7, 4096}) {
         SweepOptions opt;
         opt.target = target;
         opt.threads = threads;
-        opt.chunk_size = chunk;
+        opt.batch_size = batch;
         std::string diff;
         EXPECT_TRUE(same_rows(reference, run_tuples(tuples, opt), diff))
-            << to_string(target) << ", " << threads << " threads, chunk " << chunk << ": " << diff;
+            << to_string(target) << ", " << threads << " threads, batches of " << batch << ": " << diff;
         ++compared;
       }
   }
