@@ -16,9 +16,9 @@ struct LaneArrays {
   alignas(64) double dX[max_lanes], dY[max_lanes];
 
   // Fast path (mirror boundary, no obstacles): the integrator also moves the
-  // robot and advances the clock when the step stays in its cell, inside the
-  // wall band, and triggers no end or segment check — the same operations the
-  // scalar PlannerRun would do. Any other step sets `flag` and is left to the
+  // robot (with Eq. 7's single reflections) and advances the clock when the
+  // step stays in its cell and triggers no end or segment check — the same
+  // operations the scalar PlannerRun would do. Any other step sets `flag` and is left to the
   // sink, which redoes it in full.
   alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
   alignas(64) double budget[max_lanes], stuck_time[max_lanes], t_last_new[max_lanes];

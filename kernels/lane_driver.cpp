@@ -55,12 +55,9 @@ class LaneDriver final : public LaneSink {
         continue;
       }
       try {
-        s.run->set_lane_progress(a_.X[l], a_.Y[l], a_.t[l], std::int64_t(a_.steps[l]), int(a_.seg_step[l]));
-        if (s.run->arnold_step_done({a_.x[l], a_.y[l], a_.z[l]}, a_.dX[l], a_.dY[l]) && s.run->ended()) {
+        if (s.run->lane_step(a_, l)) {
           complete(s);
           load(l);
-        } else {
-          write_lane(l, *s.run);
         }
       } catch (const std::exception& e) {
         record_error(results_[s.item], e.what());
@@ -88,41 +85,16 @@ class LaneDriver final : public LaneSink {
     clock_type::time_point t0;
   };
 
-  void write_lane(int l, const PlannerRun& run) {
-    write_lane(l, run.arnold_lane());
-    const PlannerRun::LaneProgress g = run.lane_progress();
-    a_.X[l] = g.x;
-    a_.Y[l] = g.y;
-    a_.t[l] = g.t;
-    a_.fh[l] = g.fh;
-    a_.budget[l] = g.budget;
-    a_.stuck_time[l] = g.stuck_time;
-    a_.t_last_new[l] = g.t_last_new;
-    a_.steps[l] = double(g.steps);
-    a_.seg_step[l] = g.seg_step;
-    a_.niter[l] = g.niter;
-    a_.fast[l] = g.fast ? 1.0 : 0.0;
-    a_.lo_x[l] = g.lo_x;
-    a_.hi_x[l] = g.hi_x;
-    a_.lo_y[l] = g.lo_y;
-    a_.hi_y[l] = g.hi_y;
-    a_.inv_cell[l] = g.inv_cell;
-    a_.max_i[l] = g.max_i;
-    a_.max_j[l] = g.max_j;
-    a_.cell_i[l] = g.cell_i;
-    a_.cell_j[l] = g.cell_j;
-  }
-
-  void write_lane(int l, const PlannerRun::ArnoldLane& v) {
-    a_.x[l] = v.u.x;
-    a_.y[l] = v.u.y;
-    a_.z[l] = v.u.z;
-    a_.A[l] = v.A;
-    a_.B[l] = v.B;
-    a_.C[l] = v.C;
-    a_.h[l] = v.h;
-    a_.h_pos[l] = v.h_pos;
-    a_.ds[l] = double(v.ds);
+  // Idle lane: harmless numbers (a frozen, flagged lane), never read back.
+  void idle_lane(int l) {
+    a_.x[l] = a_.y[l] = a_.z[l] = a_.A[l] = a_.B[l] = a_.C[l] = a_.h[l] = a_.h_pos[l] = 0.0;
+    a_.ds[l] = 3.0;
+    a_.fast[l] = 0.0;
+    a_.X[l] = a_.Y[l] = a_.t[l] = a_.fh[l] = a_.steps[l] = a_.seg_step[l] = 0.0;
+    a_.budget[l] = a_.stuck_time[l] = a_.niter[l] = 1.0;
+    a_.t_last_new[l] = a_.lo_x[l] = a_.hi_x[l] = a_.lo_y[l] = a_.hi_y[l] = 0.0;
+    a_.inv_cell[l] = 1.0;
+    a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
   }
 
   void complete(Slot& s) {
@@ -164,7 +136,7 @@ class LaneDriver final : public LaneSink {
           complete(s);
           continue;
         }
-        write_lane(l, *s.run);
+        s.run->write_lane(a_, l);
         return;
       } catch (const std::exception& e) {
         record_error(r, e.what());
@@ -172,14 +144,7 @@ class LaneDriver final : public LaneSink {
         count(r);
       }
     }
-    // Idle lane: harmless numbers, never read back.
-    write_lane(l, {{0, 0, 0}, 0, 0, 0, 0, 0, 3});
-    a_.fast[l] = 0.0;
-    a_.X[l] = a_.Y[l] = a_.t[l] = a_.fh[l] = a_.steps[l] = a_.seg_step[l] = 0.0;
-    a_.budget[l] = a_.stuck_time[l] = a_.niter[l] = 1.0;
-    a_.t_last_new[l] = a_.lo_x[l] = a_.hi_x[l] = a_.lo_y[l] = a_.hi_y[l] = 0.0;
-    a_.inv_cell[l] = 1.0;
-    a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
+    idle_lane(l);
   }
 
   RunQueue& q_;

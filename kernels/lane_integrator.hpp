@@ -27,7 +27,16 @@ template <class V>
 inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   const V zero = lane::splat<V>(0.0), one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
-  const V X1 = X + s.dX, Y1 = Y + s.dY, t1 = t + lane_load<V>(a.fh + o);
+  // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a step
+  // that needs more than one is flagged below (still outside the band).
+  const V lo_x = lane_load<V>(a.lo_x + o), hi_x = lane_load<V>(a.hi_x + o);
+  const V lo_y = lane_load<V>(a.lo_y + o), hi_y = lane_load<V>(a.hi_y + o);
+  V X1 = X + s.dX, Y1 = Y + s.dY;
+  X1 = lane::select(X1 < lo_x, (lo_x + lo_x) - X1, X1);
+  X1 = lane::select(X1 > hi_x, (hi_x + hi_x) - X1, X1);
+  Y1 = lane::select(Y1 < lo_y, (lo_y + lo_y) - Y1, Y1);
+  Y1 = lane::select(Y1 > hi_y, (hi_y + hi_y) - Y1, Y1);
+  const V t1 = t + lane_load<V>(a.fh + o);
   const V inv = lane_load<V>(a.inv_cell + o);
   const V gi = X1 * inv, gj = Y1 * inv;
   V ci = lane::select(gi > zero, lane::trunc(gi), zero);
@@ -36,8 +45,7 @@ inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   ci = lane::select(ci < mi, ci, mi);
   cj = lane::select(cj < mj, cj, mj);
   const V seg = lane_load<V>(a.seg_step + o) + one;
-  const auto inside = (X1 >= lane_load<V>(a.lo_x + o)) & (X1 <= lane_load<V>(a.hi_x + o)) &
-                      (Y1 >= lane_load<V>(a.lo_y + o)) & (Y1 <= lane_load<V>(a.hi_y + o));
+  const auto inside = (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
   const auto quiet = inside & (lane_load<V>(a.fast + o) == one) & (ci == lane_load<V>(a.cell_i + o)) &
                      (cj == lane_load<V>(a.cell_j + o)) & (t1 < lane_load<V>(a.budget + o)) &
                      ((t1 - lane_load<V>(a.t_last_new + o)) < lane_load<V>(a.stuck_time + o)) &

@@ -103,41 +103,59 @@ void PlannerRun::end_segment() {
   if (!ended_) begin_segment();
 }
 
-PlannerRun::LaneProgress PlannerRun::lane_progress() const {
-  LaneProgress g;
-  g.x = robot_.x();
-  g.y = robot_.y();
-  g.t = t_;
-  g.fh = p_.f * h_;  // the clock step after_move adds
-  g.budget = budget_;
-  g.stuck_time = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
-  g.t_last_new = t_last_new_;
-  g.steps = r_.steps;
-  g.seg_step = seg_step_;
-  g.niter = p_.niter;
-  g.fast = p_.boundary == Boundary::mirror && env_.obstacles.empty() && trace_ == nullptr;
+void PlannerRun::write_lane(LaneArrays& a, int l) const {
+  a.x[l] = u_.x;
+  a.y[l] = u_.y;
+  a.z[l] = u_.z;
+  a.A[l] = p_.A;
+  a.B[l] = p_.B;
+  a.C[l] = p_.C;
+  a.h[l] = h_;
+  a.h_pos[l] = p_.f * p_.v * h_;
+  a.ds[l] = double(ds_);
+  a.X[l] = robot_.x();
+  a.Y[l] = robot_.y();
+  a.t[l] = t_;
+  a.fh[l] = p_.f * h_;  // the clock step after_move adds
+  a.budget[l] = budget_;
+  a.stuck_time[l] = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
+  a.t_last_new[l] = t_last_new_;
+  a.steps[l] = double(r_.steps);
+  a.seg_step[l] = seg_step_;
+  a.niter[l] = p_.niter;
+  a.fast[l] = p_.boundary == Boundary::mirror && env_.obstacles.empty() && trace_ == nullptr ? 1.0 : 0.0;
   // The band mirror_eq7 keeps: triangle_fold(u, 0 + fo, lx - fo).
-  g.lo_x = 0.0 + p_.fo;
-  g.hi_x = env_.lx - p_.fo;
-  g.lo_y = 0.0 + p_.fo;
-  g.hi_y = env_.ly - p_.fo;
-  g.inv_cell = grid_.inv_cell_size();
-  g.max_i = grid_.nx() - 1;
-  g.max_j = grid_.ny() - 1;
-  g.cell_i = grid_.cell_x(g.x);
-  g.cell_j = grid_.cell_y(g.y);
-  return g;
+  a.lo_x[l] = 0.0 + p_.fo;
+  a.hi_x[l] = env_.lx - p_.fo;
+  a.lo_y[l] = 0.0 + p_.fo;
+  a.hi_y[l] = env_.ly - p_.fo;
+  a.inv_cell[l] = grid_.inv_cell_size();
+  a.max_i[l] = grid_.nx() - 1;
+  a.max_j[l] = grid_.ny() - 1;
+  a.cell_i[l] = grid_.cell_x(robot_.x());
+  a.cell_j[l] = grid_.cell_y(robot_.y());
 }
 
-void PlannerRun::set_lane_progress(double x, double y, double t, std::int64_t steps, int seg_step) {
-  robot_.set_position(x, y);
-  t_ = t;
-  r_.steps = steps;
-  seg_step_ = seg_step;
-}
-
-PlannerRun::ArnoldLane PlannerRun::arnold_lane() const {
-  return {u_, p_.A, p_.B, p_.C, h_, p_.f * p_.v * h_, ds_};
+bool PlannerRun::lane_step(LaneArrays& a, int l) {
+  robot_.set_position(a.X[l], a.Y[l]);
+  t_ = a.t[l];
+  r_.steps = std::int64_t(a.steps[l]);
+  seg_step_ = int(a.seg_step[l]);
+  const bool segment_or_end = arnold_step_done({a.x[l], a.y[l], a.z[l]}, a.dX[l], a.dY[l]);
+  if (ended_) return true;
+  if (segment_or_end) {  // DSindex or the robot may have changed: all of it
+    write_lane(a, l);
+    return false;
+  }
+  a.X[l] = robot_.x();
+  a.Y[l] = robot_.y();
+  a.t[l] = t_;
+  a.steps[l] = double(r_.steps);
+  a.seg_step[l] = seg_step_;
+  a.t_last_new[l] = t_last_new_;
+  a.cell_i[l] = grid_.cell_x(robot_.x());
+  a.cell_j[l] = grid_.cell_y(robot_.y());
+  return false;
 }
 
 bool PlannerRun::point_done(double dt) {

@@ -7,6 +7,7 @@
 
 #include "arnold_flow.hpp"
 #include "coverage_grid.hpp"
+#include "lane_arrays.hpp"
 #include "environment.hpp"
 #include "logistic_map.hpp"
 #include "robot_motion.hpp"
@@ -25,35 +26,21 @@ class PlannerRun {
   void run();
 
   // Step-driven use by the lane integrators, which compute fixed-step RK4
-  // steps of many runs at once: start(), then per step read arnold_lane(),
-  // hand back the step with arnold_step_done() until ended(), then finish().
-  struct ArnoldLane {
-    Vec3<double> u;
-    double A, B, C, h, h_pos;
-    int ds;
-  };
+  // steps of many runs at once (LaneArrays): start(), write_lane(), then for
+  // every step the integrator flags (see LaneArrays::flag) lane_step(), until
+  // it returns true (the run ended); then finish().
   void start();
-  ArnoldLane arnold_lane() const;
-  // Applies one accepted Arnold step and, at the end of a segment, the
-  // decisions of Algorithm 1 (Eq. 5, index switching, MapZoning transits run
-  // here, scalar). True when the lane must reload arnold_lane(): a segment
-  // ended (DSindex may have changed) or the run ended.
-  bool arnold_step_done(const Vec3<double>& u, double dX, double dY);
+  void write_lane(LaneArrays& a, int l) const;
+  // Applies the flagged step in full: the robot's move, the cells, the end
+  // checks and, at the end of a segment, the decisions of Algorithm 1 (Eq. 5,
+  // index switching, MapZoning transits, scalar). Takes over the progress the
+  // fast path made since the last call and hands its own back.
+  bool lane_step(LaneArrays& a, int l);
   bool ended() const { return ended_; }
   void finish();
 
-  // What the lane fast path needs (see LaneArrays), and the progress it made
-  // handed back before the next full step.
-  struct LaneProgress {
-    double x, y, t, fh, budget, stuck_time, t_last_new;
-    std::int64_t steps;
-    int seg_step, niter;
-    bool fast;  // mirror boundary, no obstacles, no trace
-    double lo_x, hi_x, lo_y, hi_y, inv_cell;
-    int max_i, max_j, cell_i, cell_j;
-  };
-  LaneProgress lane_progress() const;
-  void set_lane_progress(double x, double y, double t, std::int64_t steps, int seg_step);
+  // The scalar reference path's step, exposed for the lane driver's tests.
+  bool arnold_step_done(const Vec3<double>& u, double dX, double dY);
 
   // Single mechanisms, public so tests can drive them on hand-made cases.
   // Algorithm 2: try zones in order until one is reached.
