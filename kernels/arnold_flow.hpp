@@ -2,6 +2,9 @@
 // The Arnold (ABC) flow coupled to a unicycle robot (seed 000, Eqs. 1-3), and
 // one RK4 step of the 5-state system (x, y, z, X, Y). Templates over the lane
 // type so the scalar reference and the SIMD kernels share one arithmetic path.
+#include <algorithm>
+#include <cmath>
+
 #include "lane_math.hpp"
 #include "sincos.hpp"
 
@@ -45,6 +48,60 @@ inline Vec3<T> arnold_rhs(const Vec3<T>& u, const ArnoldCoeffs<T>& k) {
   return arnold_rhs(trig3(u), k);
 }
 
+// Stages 2-4 of an RK4 step are the base state shifted by d = (h/2) k or h k.
+// When every such shift is small (|d| <= small_shift, guaranteed by
+// h * max(|A|+|C|, |B|+|A|, |C|+|B|) <= small_shift since |k| is bounded by
+// those sums), their sines and cosines come from the base state's by the
+// angle-addition formulas and short Taylor polynomials of d (truncation below
+// 2e-19 at the bound): about half the work of a full sincos. A run's mode is
+// a function of its parameters only, so every width computes a lane alike.
+inline constexpr double small_shift = 0.2;
+
+inline bool small_shift_mode(double h, double A, double B, double C) {
+  const double a = std::fabs(A), b = std::fabs(B), c = std::fabs(C);
+  return h * std::max({a + c, b + a, c + b}) <= small_shift;
+}
+
+template <class T>
+inline void sincos_shift(T su, T cu, T d, T& s, T& c) {
+  using lane::fma;
+  using lane::splat;
+  const T d2 = d * d;
+  T ps = fma(d2, splat<T>(-1.0 / 39916800.0), splat<T>(1.0 / 362880.0));
+  ps = fma(ps, d2, splat<T>(-1.0 / 5040.0));
+  ps = fma(ps, d2, splat<T>(1.0 / 120.0));
+  ps = fma(ps, d2, splat<T>(-1.0 / 6.0));
+  const T sd = fma(d * d2, ps, d);
+  T pc = fma(d2, splat<T>(1.0 / 479001600.0), splat<T>(-1.0 / 3628800.0));
+  pc = fma(pc, d2, splat<T>(1.0 / 40320.0));
+  pc = fma(pc, d2, splat<T>(-1.0 / 720.0));
+  pc = fma(pc, d2, splat<T>(1.0 / 24.0));
+  pc = fma(pc, d2, splat<T>(-0.5));
+  const T cd = fma(d2, pc, splat<T>(1.0));
+  s = fma(su, cd, cu * sd);
+  c = fma(cu, cd, -(su * sd));
+}
+
+// Trig of u + d, by shift when `small` holds for every lane, by full sincos
+// when for none, and lane by lane otherwise.
+template <class T, class M>
+inline Trig3<T> trig3_stage(const Trig3<T>& base, const Vec3<T>& u, T scale, const Vec3<T>& k, M small) {
+  using lane::fma;
+  auto shifted = [&] {
+    Trig3<T> t;
+    sincos_shift(base.sx, base.cx, scale * k.x, t.sx, t.cx);
+    sincos_shift(base.sy, base.cy, scale * k.y, t.sy, t.cy);
+    sincos_shift(base.sz, base.cz, scale * k.z, t.sz, t.cz);
+    return t;
+  };
+  auto full = [&] { return trig3(Vec3<T>{fma(scale, k.x, u.x), fma(scale, k.y, u.y), fma(scale, k.z, u.z)}); };
+  if (lane::all(small)) return shifted();
+  if (lane::none(small)) return full();
+  const Trig3<T> a = shifted(), b = full();
+  return {lane::select(small, a.sx, b.sx), lane::select(small, a.cx, b.cx), lane::select(small, a.sy, b.sy),
+          lane::select(small, a.cy, b.cy), lane::select(small, a.sz, b.sz), lane::select(small, a.cz, b.cz)};
+}
+
 // Which Arnold coordinate drives the heading (DSindex 1=x, 2=y, 3=z), as lane
 // masks so lanes may differ.
 template <class T>
@@ -74,30 +131,27 @@ struct Rk4Step {
 
 // h: step of the Arnold system; h_pos: robot distance per step (f * v * h),
 // which is how the scaling factor f enters (SPEC 2, "Scaling factor f").
+// `small`: the lane runs in small-shift mode (see small_shift_mode).
 template <class T>
 inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const HeadingSelect<T>& hs,
-                           T h, T h_pos) {
+                           T h, T h_pos, decltype(T() < T()) small) {
   using lane::fma;
   const T half = h * lane::splat<T>(0.5);
   const T two = lane::splat<T>(2.0);
   // Each stage's trig is reduced at once to what later stages need (its
   // derivative and heading), and stages 1+4 and 2+3 are summed as they come:
-  // this keeps few vectors live (no spills with two interleaved AVX-512
-  // vectors). The operations are the same in every width.
+  // this keeps few vectors live. The operations are the same in every width.
   const Trig3<T> t1 = trig3(u);
   const Vec3<T> k1 = arnold_rhs(t1, k);
   const T c1 = heading_cos(t1, hs), s1 = heading_sin(t1, hs);
-  const Vec3<T> u2{fma(half, k1.x, u.x), fma(half, k1.y, u.y), fma(half, k1.z, u.z)};
-  const Trig3<T> t2 = trig3(u2);
+  const Trig3<T> t2 = trig3_stage(t1, u, half, k1, small);
   const Vec3<T> k2 = arnold_rhs(t2, k);
   const T c2 = heading_cos(t2, hs), s2 = heading_sin(t2, hs);
-  const Vec3<T> u3{fma(half, k2.x, u.x), fma(half, k2.y, u.y), fma(half, k2.z, u.z)};
-  const Trig3<T> t3 = trig3(u3);
+  const Trig3<T> t3 = trig3_stage(t1, u, half, k2, small);
   const Vec3<T> k3 = arnold_rhs(t3, k);
   const T c23 = c2 + heading_cos(t3, hs), s23 = s2 + heading_sin(t3, hs);
   const Vec3<T> k23{k2.x + k3.x, k2.y + k3.y, k2.z + k3.z};
-  const Vec3<T> u4{fma(h, k3.x, u.x), fma(h, k3.y, u.y), fma(h, k3.z, u.z)};
-  const Trig3<T> t4 = trig3(u4);
+  const Trig3<T> t4 = trig3_stage(t1, u, h, k3, small);
   const Vec3<T> k4 = arnold_rhs(t4, k);
   const T c14 = c1 + heading_cos(t4, hs), s14 = s1 + heading_sin(t4, hs);
 
@@ -111,6 +165,12 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const Hea
   out.dX = pos6 * fma(two, c23, c14);
   out.dY = pos6 * fma(two, s23, s14);
   return out;
+}
+
+// Scalar convenience: the mode from the run's own parameters.
+inline Rk4Step<double> rk4_step(const Vec3<double>& u, const ArnoldCoeffs<double>& k,
+                                const HeadingSelect<double>& hs, double h, double h_pos) {
+  return rk4_step<double>(u, k, hs, h, h_pos, small_shift_mode(h, k.A, k.B, k.C));
 }
 
 }  // namespace chaosweep

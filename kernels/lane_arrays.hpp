@@ -12,6 +12,7 @@ struct LaneArrays {
   alignas(64) double x[max_lanes], y[max_lanes], z[max_lanes];
   alignas(64) double A[max_lanes], B[max_lanes], C[max_lanes];
   alignas(64) double h[max_lanes], h_pos[max_lanes], ds[max_lanes];
+  alignas(64) double small[max_lanes];  // 1: small-shift mode (arnold_flow.hpp)
   // The step's robot displacement, written by the integrator.
   alignas(64) double dX[max_lanes], dY[max_lanes];
 

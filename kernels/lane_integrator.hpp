@@ -62,7 +62,7 @@ inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
 // vectors stay in registers instead of passing through memory.
 template <class V, int N>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
-  constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V (Twin<v8d>: 16)
+  constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   do {
     for (int g = 0; g < a.lanes; g += w * N) {
       Rk4Step<V> s[N];
@@ -72,7 +72,8 @@ template <class V, int N>
         const ArnoldCoeffs<V> c{lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
         const V ds = lane_load<V>(a.ds + o);
         const HeadingSelect<V> hs{ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
-        s[k] = rk4_step(u, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o));
+        s[k] = rk4_step(u, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o),
+                        lane_load<V>(a.small + o) == lane::splat<V>(1.0));
       }
       for (int k = 0; k < N; ++k) {
         const int o = g + k * w;

@@ -1,5 +1,4 @@
-// Width 4 (AVX2 + FMA), two vectors per pass (Twin would spill: AVX2 has
-// only 16 vector registers); this file alone is compiled with -march=x86-64-v3.
+// Width 4 (AVX2 + FMA), two vectors per pass; this file alone is compiled with -march=x86-64-v3.
 // It must call nothing inline that baseline code also instantiates: only the
 // vector-typed templates live here (see tests/check_simd_symbols.sh).
 #include "simd_lane_math.hpp"

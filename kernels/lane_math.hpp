@@ -36,6 +36,8 @@ inline double floor(double x) {
 
 inline double select(mask1 m, double a, double b) { return m ? a : b; }
 inline double trunc(double x) { return std::trunc(x); }
+inline bool all(mask1 m) { return m; }
+inline bool none(mask1 m) { return !m; }
 
 inline int1 to_int(double x) { return static_cast<int1>(x); }
 inline double abs(double x) { return std::fabs(x); }

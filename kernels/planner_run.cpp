@@ -113,6 +113,7 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.h[l] = h_;
   a.h_pos[l] = p_.f * p_.v * h_;
   a.ds[l] = double(ds_);
+  a.small[l] = small_shift_mode(h_, p_.A, p_.B, p_.C) ? 1.0 : 0.0;
   a.X[l] = robot_.x();
   a.Y[l] = robot_.y();
   a.t[l] = t_;

@@ -34,6 +34,8 @@ inline void quadrant(v4d j, v4d sin_r, v4d cos_r, v4d& s, v4d& c) {
   s = v4d(v4l(s_abs) ^ ((qi << 62) & sign_bit));
   c = v4d(v4l(c_abs) ^ (((qi + 1) << 62) & sign_bit));
 }
+inline bool all(v4l m) { return _mm256_movemask_pd(__m256d(m)) == 0xF; }
+inline bool none(v4l m) { return _mm256_movemask_pd(__m256d(m)) == 0; }
 inline v4d trunc(v4d x) { return _mm256_round_pd(x, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC); }
 #endif
 
@@ -61,6 +63,8 @@ inline void quadrant(v8d j, v8d sin_r, v8d cos_r, v8d& s, v8d& c) {
   s = v8d(v8l(s_abs) ^ ((qi << 62) & sign_bit));
   c = v8d(v8l(c_abs) ^ (((qi + 1) << 62) & sign_bit));
 }
+inline bool all(v8l m) { return _mm512_movepi64_mask(__m512i(m)) == 0xFF; }
+inline bool none(v8l m) { return _mm512_movepi64_mask(__m512i(m)) == 0; }
 inline v8d trunc(v8d x) { return _mm512_mask_roundscale_pd(x, 0xFF, x, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC); }
 #endif
 
