@@ -80,8 +80,8 @@ sr = 4
 start = [0.5, 0.5]
 max_time = 3000
 [axes]
-A = { start = 0.35, stop = 0.65, num = 16 }
-B = { start = 0.1, stop = 0.8, num = 16 }
+A = { start = 0.35, stop = 0.65, num = 32 }
+B = { start = 0.1, stop = 0.8, num = 32 }
 C = [0.2, 0.3]
 )";
 

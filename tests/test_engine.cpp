@@ -260,7 +260,8 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
 
 TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries, obstacles, the scalar-only paths
-  // (step doubling, Logistic) and an invalid run, mixed in one batch.
+  // (step doubling, Logistic), a run outside small-shift mode (dt = 0.5) and
+  // an invalid run, mixed in one batch.
   const SweepSpec s = parse_sweep_spec(R"(
 case = [
   { label = "original" },
@@ -273,6 +274,7 @@ case = [
   { label = "logistic", planner = "logistic" },
   { label = "invalid", env = "one_square", start = [8, 8] },
   { label = "points", sampling = "points", f = 4 },
+  { label = "full-trig", dt = 0.5 },
 ]
 [fixed]
 size = 16

@@ -77,6 +77,38 @@ TEST(ArnoldRhs, IsTheAbcFlow) {
   }
 }
 
+TEST(SincosShift, MatchesLibmForShiftsUpToTheBound) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi), shift(-small_shift, small_shift);
+  for (int i = 0; i < 100000; ++i) {
+    const double a = angle(rng), d = shift(rng);
+    double s, c;
+    sincos_shift(std::sin(a), std::cos(a), d, s, c);
+    ASSERT_NEAR(s, std::sin(a + d), 4e-16) << a << " + " << d;
+    ASSERT_NEAR(c, std::cos(a + d), 4e-16) << a << " + " << d;
+  }
+}
+
+TEST(SincosShift, ModeFollowsTheBoundOnEveryShift) {
+  EXPECT_TRUE(small_shift_mode(0.1, 0.5, 0.25, 0.25));   // paper: 0.075
+  EXPECT_TRUE(small_shift_mode(0.1, 0.65, 0.8, 0.4));    // Fig. 6 corner: 0.145
+  EXPECT_FALSE(small_shift_mode(0.4, 0.5, 0.25, 0.25));  // 0.3
+  EXPECT_FALSE(small_shift_mode(0.1, -2.0, 0.1, 0.1));   // |A| counts
+}
+
+TEST(Rk4Step, SmallShiftAndFullModesAgreeToRounding) {
+  const ArnoldCoeffs<double> k{0.5, 0.25, 0.25};
+  for (const Vec3<double> u : {Vec3<double>{0, 1, 0}, Vec3<double>{3.1, -2.9, 1.5}, Vec3<double>{-1.2, 0.4, 3.14}}) {
+    const auto a = rk4_step<double>(u, k, heading_select(3), 0.1, 0.1, true);
+    const auto b = rk4_step<double>(u, k, heading_select(3), 0.1, 0.1, false);
+    EXPECT_NEAR(a.u.x, b.u.x, 1e-15);
+    EXPECT_NEAR(a.u.y, b.u.y, 1e-15);
+    EXPECT_NEAR(a.u.z, b.u.z, 1e-15);
+    EXPECT_NEAR(a.dX, b.dX, 1e-16);
+    EXPECT_NEAR(a.dY, b.dY, 1e-16);
+  }
+}
+
 TEST(Rk4Step, HeadingIsTheSelectedCoordinate) {
   // With A=B=C=0 the state is frozen, so one step moves the robot by
   // h_pos * (cos s, sin s) with s the DSindex coordinate.
