@@ -1,7 +1,11 @@
-// `chaosweep sweep`: expand a spec, run it on TBB, store rows in HDF5.
+// `chaosweep sweep`: expand a spec, run it (or one shard of it) on TBB, store
+// rows in HDF5; resumable after a kill or SIGINT/SIGTERM.
 #include <unistd.h>
 
-#include <cmath>
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <thread>
 
@@ -9,6 +13,7 @@
 #include "cli_subcommands.hpp"
 #include "h5_store.hpp"
 #include "progress.hpp"
+#include "run_hash.hpp"
 #include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 #include "sweep_summary.hpp"
@@ -16,23 +21,73 @@
 
 namespace chaosweep {
 
+namespace {
+
+std::atomic<bool> stop_requested{false};
+extern "C" void on_stop_signal(int) { stop_requested.store(true); }
+
+struct Shard {
+  int index = 0, count = 1;
+};
+
+// "K/N", or SLURM_ARRAY_TASK_ID (minus SLURM_ARRAY_TASK_MIN) of SLURM_ARRAY_TASK_COUNT.
+Shard parse_shard(const std::string& text) {
+  Shard s;
+  if (text.empty()) {
+    const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+    const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+    if (!id || !count) return s;
+    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+    s.index = std::atoi(id) - (min ? std::atoi(min) : 0);
+    s.count = std::atoi(count);
+  } else {
+    const auto slash = text.find('/');
+    try {
+      if (slash == std::string::npos) throw std::invalid_argument("");
+      std::size_t used = 0;
+      s.index = std::stoi(text.substr(0, slash), &used);
+      if (used != slash) throw std::invalid_argument("");
+      s.count = std::stoi(text.substr(slash + 1), &used);
+      if (used != text.size() - slash - 1) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw SpecError("--shard: '" + text + "' is not K/N (e.g. 0/4)");
+    }
+  }
+  if (s.count < 1 || s.index < 0 || s.index >= s.count)
+    throw SpecError("--shard: index " + std::to_string(s.index) + " of " + std::to_string(s.count) +
+                    " is out of range: need 0 <= K < N");
+  return s;
+}
+
+}  // namespace
+
 void add_sweep_command(CLI::App& app, std::function<int()>& action) {
-  auto* cmd = app.add_subcommand("sweep", "Run every run of a sweep spec and write the results to HDF5");
+  auto* cmd = app.add_subcommand("sweep", "Run every run of a sweep spec (or one shard) and write the results to HDF5");
   cmd->footer(
       "The spec's axes are expanded as a Cartesian product (first axis slowest); each run is\n"
-      "one row of /runs in OUT, in run_id order. Rows go to OUT.partial first; OUT appears only\n"
-      "when the sweep completes. A failing run is recorded with its status, never aborts the\n"
-      "sweep. Example: chaosweep sweep experiments/demo.toml -o out/demo/results.h5");
+      "one row of /runs in OUT, in run_id order. Rows go to OUT.partial, a batch at a time\n"
+      "(the file is closed between batches, so a killed sweep leaves every finished batch);\n"
+      "OUT appears only when the sweep completes. SIGINT/SIGTERM finish the runs in flight,\n"
+      "write them and exit 130: continue with --resume. A failing run is recorded with its\n"
+      "status, never aborts the sweep.\n"
+      "Example: chaosweep sweep experiments/demo.toml -o out/demo/results.h5");
   struct Opts {
-    std::string spec, out;
+    std::string spec, out, shard, progress = "auto";
     int threads = 0;
-    bool quiet = false;
-    std::string progress = "auto";
+    std::int64_t batch = 4096;
+    bool quiet = false, resume = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("spec", o->spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->out, "result file (HDF5)")->required();
   cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--shard", o->shard,
+                  "run only shard K of N (run_ids i with i % N == K); default: from SLURM_ARRAY_TASK_ID "
+                  "and SLURM_ARRAY_TASK_COUNT when set")
+      ->type_name("K/N");
+  cmd->add_flag("--resume", o->resume,
+                "continue OUT.partial of the same spec and shard (or do nothing if OUT is complete)");
+  cmd->add_option("--batch", o->batch, "runs per write to OUT.partial")->check(CLI::Range(1, 1 << 24));
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors (and progress only with --progress=always)");
   cmd->add_option("--progress", o->progress,
                   "progress on stderr: a live line on a terminal, a plain line every 30 s otherwise")
@@ -40,10 +95,13 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       ->default_str("auto");
   cmd->callback([o, &action] {
     action = [o]() -> int {
+      namespace fs = std::filesystem;
       SweepSpec spec;
       SimdTarget target;
+      Shard shard;
       try {
         target = selected_simd_target();
+        shard = parse_shard(o->shard);
         spec = load_sweep_spec(o->spec);
         EnvironmentCache cache;
         preload_environments(spec, cache);
@@ -51,38 +109,95 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         std::cerr << "chaosweep sweep: " << e.what() << "\n";
         return exit_bad_input;
       }
+      const std::string partial = o->out + ".partial";
+      const std::string spec_hash = hex64(fnv1a64(spec.text));
+      const std::int64_t shard_runs = shard_size(spec.size(), shard.index, shard.count);
+      std::int64_t skip = 0;
+      const bool resuming = o->resume && fs::exists(partial);
+      try {
+        if (o->resume && !fs::exists(partial) && fs::exists(o->out)) {
+          if (read_attribute(o->out, "spec_hash") != spec_hash)
+            throw std::runtime_error(o->out + " is complete but holds another spec's runs");
+          if (!o->quiet) std::cout << o->out << " is complete: nothing to resume\n";
+          return exit_ok;
+        }
+        if (!o->resume && fs::exists(partial))
+          throw std::runtime_error(partial + " exists (an interrupted sweep): pass --resume to continue it, "
+                                   "or delete it to start over");
+        if (resuming) {
+          if (read_attribute(partial, "spec_hash") != spec_hash)
+            throw std::runtime_error(partial + " holds another spec's runs (spec_hash differs)");
+          if (read_attribute(partial, "shard") != std::to_string(shard.index) + "/" + std::to_string(shard.count))
+            throw std::runtime_error(partial + " holds shard " + read_attribute(partial, "shard") + ", not " +
+                                     std::to_string(shard.index) + "/" + std::to_string(shard.count));
+          const auto ids = read_i64_column(partial, "run_id");
+          for (std::size_t j = 0; j < ids.size(); ++j)
+            if (ids[j] != shard_run_id(std::int64_t(j), shard.index, shard.count))
+              throw std::runtime_error(partial + ": row " + std::to_string(j) + " has run_id " +
+                                       std::to_string(ids[j]) + ", not the shard's next run");
+          skip = std::int64_t(ids.size());
+        }
+      } catch (const std::exception& e) {
+        std::cerr << "chaosweep sweep: " << e.what() << "\n";
+        return exit_bad_input;
+      }
       const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
       const int threads = o->threads > 0 ? o->threads : int(cores);
-      if (!o->quiet)
-        std::cout << "sweep '" << spec.name << "': " << spec.size() << " runs on " << threads
-                  << " threads, " << to_string(target) << " kernels -> " << o->out << "\n";
+      if (!o->quiet) {
+        std::cout << "sweep '" << spec.name << "': " << shard_runs << " runs";
+        if (shard.count > 1) std::cout << " (shard " << shard.index << "/" << shard.count << " of " << spec.size() << ")";
+        if (skip) std::cout << ", " << skip << " already done";
+        std::cout << " on " << threads << " threads, " << to_string(target) << " kernels -> " << o->out << "\n";
+      }
       SweepSummary summary;
+      std::signal(SIGINT, on_stop_signal);
+      std::signal(SIGTERM, on_stop_signal);
+      std::int64_t written = skip;
       try {
-        H5RunWriter writer(o->out);
-        writer.set_attribute("engine_version", engine_version());
-        writer.set_attribute("git_commit", git_commit());
-        writer.set_attribute("git_dirty", git_dirty() ? "true" : "false");
-        writer.set_attribute("spec", spec.text);
-        writer.set_attribute("spec_path", o->spec);
-        writer.set_attribute("spec_name", spec.name);
+        H5RunWriter writer(o->out, resuming ? H5RunWriter::Mode::resume : H5RunWriter::Mode::create);
+        if (!resuming) {
+          writer.set_attribute("engine_version", engine_version());
+          writer.set_attribute("git_commit", git_commit());
+          writer.set_attribute("git_dirty", git_dirty() ? "true" : "false");
+          writer.set_attribute("spec", spec.text);
+          writer.set_attribute("spec_hash", spec_hash);
+          writer.set_attribute("spec_path", o->spec);
+          writer.set_attribute("spec_name", spec.name);
+          writer.set_attribute("runs_total", std::to_string(spec.size()));
+          writer.set_attribute("shard", std::to_string(shard.index) + "/" + std::to_string(shard.count));
+          writer.set_attribute("start_time", utc_now());
+        } else {
+          writer.set_attribute("resumed_at", utc_now());
+        }
         writer.set_attribute("host", host_name());
         writer.set_attribute("threads", std::to_string(threads));
         writer.set_attribute("simd_target", to_string(target));
-        writer.set_attribute("start_time", utc_now());
+        for (const char* v : {"SLURM_JOB_ID", "SLURM_ARRAY_JOB_ID", "SLURM_ARRAY_TASK_ID"})
+          if (const char* val = std::getenv(v)) writer.set_attribute(v, val);
         SweepOptions opt;
         opt.threads = threads;
         opt.target = target;
+        opt.batch_size = o->batch;
+        opt.shard_index = shard.index;
+        opt.shard_count = shard.count;
+        opt.skip = skip;
+        opt.stop = &stop_requested;
         ProgressCounters counters;
         opt.progress = &counters;
         const ProgressMode mode = o->progress == "never" || (o->quiet && o->progress == "auto") ? ProgressMode::never
                                   : o->progress == "always"                                    ? ProgressMode::always
                                                                                                : ProgressMode::automatic;
         {
-          ProgressReporter reporter(counters, spec.size(), mode);
-          run_sweep(spec, opt, [&](const std::vector<RunRow>& rows) {
+          ProgressReporter reporter(counters, shard_runs - skip, mode);
+          written += run_sweep(spec, opt, [&](const std::vector<RunRow>& rows) {
             writer.append(rows);
             for (const RunRow& r : rows) summary.add(r);
           });
+        }
+        if (written < shard_runs) {
+          std::cerr << "chaosweep sweep: interrupted: " << written << " of " << shard_runs << " runs are in "
+                    << partial << "; continue with --resume\n";
+          return 130;
         }
         writer.set_attribute("end_time", utc_now());
         writer.finish();
@@ -90,7 +205,10 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         std::cerr << "chaosweep sweep: " << e.what() << "\n";
         return exit_failure;
       }
-      if (!o->quiet) std::cout << summary.text() << "results     " << o->out << "\n";
+      if (!o->quiet) {
+        if (skip) std::cout << "(summary of the " << summary.runs() << " runs of this session)\n";
+        std::cout << summary.text() << "results     " << o->out << "\n";
+      }
       return exit_ok;
     };
   });

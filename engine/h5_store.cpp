@@ -54,12 +54,7 @@ std::vector<T> read_member(const std::string& path, const std::string& column, h
 
 }  // namespace
 
-H5RunWriter::H5RunWriter(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
-  const fs::path parent = fs::path(path_).parent_path();
-  if (!parent.empty()) fs::create_directories(parent);
-  file_ = H5Fcreate(partial_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file_ < 0) h5_fail("cannot create " + partial_);
-
+H5RunWriter::H5RunWriter(std::string path, Mode mode) : path_(std::move(path)), partial_(path_ + ".partial") {
   const auto& cols = result_columns();
   for (const Column& c : cols) {
     offsets_.push_back(row_size_);
@@ -76,6 +71,31 @@ H5RunWriter::H5RunWriter(std::string path) : path_(std::move(path)), partial_(pa
       H5Tclose(t);
     }
   }
+  if (mode == Mode::resume) {
+    if (!fs::exists(partial_)) h5_fail("no " + partial_ + " to resume");
+    open();
+    hid_t ftype = H5Dget_type(dset_);
+    const int n = H5Tget_nmembers(ftype);
+    bool same = n == int(cols.size());
+    for (int i = 0; same && i < n; ++i) {
+      char* name = H5Tget_member_name(ftype, unsigned(i));
+      same = cols[std::size_t(i)].name == name;
+      H5free_memory(name);
+    }
+    H5Tclose(ftype);
+    hid_t space = H5Dget_space(dset_);
+    hsize_t rows = 0;
+    H5Sget_simple_extent_dims(space, &rows, nullptr);
+    H5Sclose(space);
+    rows_ = rows;
+    close();
+    if (!same) h5_fail(partial_ + " was written by an engine with other columns: cannot resume it");
+    return;
+  }
+  const fs::path parent = fs::path(path_).parent_path();
+  if (!parent.empty()) fs::create_directories(parent);
+  file_ = H5Fcreate(partial_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file_ < 0) h5_fail("cannot create " + partial_);
   hsize_t dims = 0, maxdims = H5S_UNLIMITED;
   hid_t space = H5Screate_simple(1, &dims, &maxdims);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
@@ -86,18 +106,30 @@ H5RunWriter::H5RunWriter(std::string path) : path_(std::move(path)), partial_(pa
   H5Pclose(dcpl);
   H5Sclose(space);
   if (dset_ < 0) h5_fail("cannot create /runs in " + partial_);
+  close();
 }
 
-H5RunWriter::~H5RunWriter() { close(); }
+H5RunWriter::~H5RunWriter() {
+  close();
+  if (type_ >= 0) H5Tclose(type_);
+}
+
+void H5RunWriter::open() {
+  if (file_ >= 0) return;
+  file_ = H5Fopen(partial_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (file_ < 0) h5_fail("cannot open " + partial_ + " (a damaged partial file cannot be resumed)");
+  dset_ = H5Dopen2(file_, "/runs", H5P_DEFAULT);
+  if (dset_ < 0) h5_fail(partial_ + " has no /runs dataset");
+}
 
 void H5RunWriter::close() {
   if (dset_ >= 0) H5Dclose(dset_);
-  if (type_ >= 0) H5Tclose(type_);
   if (file_ >= 0) H5Fclose(file_);
-  dset_ = type_ = file_ = -1;
+  dset_ = file_ = -1;
 }
 
 void H5RunWriter::set_attribute(const std::string& name, const std::string& value) {
+  open();
   hid_t t = H5Tcopy(H5T_C_S1);
   H5Tset_size(t, H5T_VARIABLE);
   H5Tset_cset(t, H5T_CSET_UTF8);
@@ -109,6 +141,7 @@ void H5RunWriter::set_attribute(const std::string& name, const std::string& valu
   if (attr >= 0) H5Aclose(attr);
   H5Sclose(space);
   H5Tclose(t);
+  close();
   if (rc < 0) h5_fail("cannot write attribute " + name);
 }
 
@@ -129,6 +162,7 @@ void H5RunWriter::append(const std::vector<RunRow>& rows) {
       }
     }
   }
+  open();
   const hsize_t start = rows_, count = rows.size(), total = rows_ + rows.size();
   if (H5Dset_extent(dset_, &total) < 0) h5_fail("cannot extend /runs");
   hid_t fspace = H5Dget_space(dset_);
@@ -138,7 +172,7 @@ void H5RunWriter::append(const std::vector<RunRow>& rows) {
   H5Sclose(mspace);
   H5Sclose(fspace);
   if (rc < 0) h5_fail("cannot write rows to " + partial_);
-  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  close();  // everything on disk before the next batch starts
   rows_ = total;
 }
 
@@ -166,6 +200,22 @@ std::vector<std::string> read_text_column(const std::string& path, const std::st
   std::vector<std::string> out;
   for (const Fixed& f : raw) out.emplace_back(f.s, strnlen(f.s, size));
   return out;
+}
+
+bool has_attribute(const std::string& path, const std::string& name) {
+  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  return file.id >= 0 && H5Aexists(file.id, name.c_str()) > 0;
+}
+
+std::int64_t count_rows(const std::string& path) {
+  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  if (file.id < 0) h5_fail("cannot open " + path);
+  Handle dset{H5Dopen2(file.id, "/runs", H5P_DEFAULT), H5Dclose};
+  if (dset.id < 0) h5_fail(path + " has no /runs dataset");
+  Handle space{H5Dget_space(dset.id), H5Sclose};
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space.id, &n, nullptr);
+  return std::int64_t(n);
 }
 
 std::string read_attribute(const std::string& path, const std::string& name) {

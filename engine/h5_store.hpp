@@ -17,8 +17,12 @@ namespace chaosweep {
 
 class H5RunWriter {
  public:
-  // Creates `path`.partial (parent directories too). Throws std::runtime_error.
-  explicit H5RunWriter(std::string path);
+  enum class Mode { create, resume };
+  // create: a new `path`.partial (parent directories too); resume: append to
+  // an existing one, whose /runs must have this engine's columns. The file is
+  // closed between appends, so a killed process leaves a readable partial
+  // file holding every batch appended so far. Throws std::runtime_error.
+  explicit H5RunWriter(std::string path, Mode mode = Mode::create);
   ~H5RunWriter();
   H5RunWriter(const H5RunWriter&) = delete;
   H5RunWriter& operator=(const H5RunWriter&) = delete;
@@ -30,6 +34,7 @@ class H5RunWriter {
   std::size_t rows_written() const { return rows_; }
 
  private:
+  void open();
   void close();
   std::string path_, partial_;
   hid_t file_ = -1, dset_ = -1, type_ = -1;
@@ -42,5 +47,7 @@ std::vector<double> read_f64_column(const std::string& path, const std::string& 
 std::vector<std::int64_t> read_i64_column(const std::string& path, const std::string& column);
 std::vector<std::string> read_text_column(const std::string& path, const std::string& column);
 std::string read_attribute(const std::string& path, const std::string& name);
+bool has_attribute(const std::string& path, const std::string& name);
+std::int64_t count_rows(const std::string& path);
 
 }  // namespace chaosweep

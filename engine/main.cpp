@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   std::function<int()> action;
   add_run_command(app, action);
   add_sweep_command(app, action);
+  add_merge_command(app, action);
   add_bench_command(app, action);
   try {
     app.parse(argc, argv);

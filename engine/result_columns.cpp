@@ -1,6 +1,7 @@
 #include "result_columns.hpp"
 
 #include "param_table.hpp"
+#include "run_hash.hpp"
 
 namespace chaosweep {
 
@@ -21,6 +22,7 @@ Column text(std::string name, std::size_t size, std::string (*g)(const RunRow&))
 std::vector<Column> make_columns() {
   std::vector<Column> c;
   c.push_back(i64("run_id", [](const RunRow& r) { return r.tuple.run_id; }));
+  c.push_back(i64("param_hash", [](const RunRow& r) { return param_hash(r.tuple.params, r.tuple.env_spec); }));
   c.push_back(text("env", 64, [](const RunRow& r) { return r.tuple.env_spec; }));
   c.push_back(text("label", 48, [](const RunRow& r) { return r.tuple.label; }));
   c.push_back(text("variant", 48, [](const RunRow& r) { return variant_name(r.tuple.params); }));

@@ -22,7 +22,7 @@ namespace {
 // pulling the next run from one shared queue as soon as a lane frees up, so
 // lanes idle only at the end of the batch. Each result is a pure function of
 // its tuple and lands in its row's slot.
-void run_rows(std::vector<RunRow>& rows, const SweepOptions& opt, tbb::task_arena& arena) {
+std::size_t run_rows(std::vector<RunRow>& rows, const SweepOptions& opt, tbb::task_arena& arena) {
   const std::size_t n = rows.size();
   std::vector<BatchItem> items(n);
   std::vector<RunResult> results(n);
@@ -32,6 +32,7 @@ void run_rows(std::vector<RunRow>& rows, const SweepOptions& opt, tbb::task_aren
     results[k].message = "not run: its worker failed";
   }
   RunQueue queue{items.data(), results.data(), n};
+  queue.stop = opt.stop;
   if (opt.progress) {
     queue.done = &opt.progress->done;
     queue.not_ok = &opt.progress->failed;
@@ -48,6 +49,7 @@ void run_rows(std::vector<RunRow>& rows, const SweepOptions& opt, tbb::task_aren
     });
   });
   for (std::size_t k = 0; k < n; ++k) rows[k].result = std::move(results[k]);
+  return std::min(queue.next.load(), n);  // all claimed runs have finished
 }
 
 }  // namespace
@@ -65,19 +67,32 @@ std::vector<RunRow> run_tuples(const std::vector<RunTuple>& tuples, const SweepO
   return all;
 }
 
-void run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink) {
+std::int64_t shard_size(std::int64_t total, int index, int count) {
+  return index < total ? (total - index + count - 1) / count : 0;
+}
+
+std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink) {
   EnvironmentCache cache;
   preload_environments(spec, cache);
-  const std::int64_t total = spec.size();
+  const std::int64_t total = shard_size(spec.size(), opt.shard_index, opt.shard_count);
   tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
   std::vector<RunRow> rows;
-  for (std::int64_t first = 0; first < total; first += opt.batch_size) {
+  std::int64_t handed = 0;
+  for (std::int64_t first = opt.skip; first < total; first += opt.batch_size) {
+    if (opt.stop && opt.stop->load()) break;
     const std::int64_t n = std::min(opt.batch_size, total - first);
     rows.assign(std::size_t(n), RunRow{});
-    for (std::int64_t k = 0; k < n; ++k) rows[std::size_t(k)].tuple = resolve_run(first + k, spec.run(first + k), cache);
-    run_rows(rows, opt, arena);
-    sink(rows);
+    for (std::int64_t k = 0; k < n; ++k) {
+      const std::int64_t id = shard_run_id(first + k, opt.shard_index, opt.shard_count);
+      rows[std::size_t(k)].tuple = resolve_run(id, spec.run(id), cache);
+    }
+    const std::size_t done = run_rows(rows, opt, arena);
+    rows.resize(done);
+    if (!rows.empty()) sink(rows);
+    handed += std::int64_t(done);
+    if (std::int64_t(done) < n) break;  // stopped
   }
+  return handed;
 }
 
 std::vector<RunRow> run_sweep_rows(const SweepSpec& spec, const SweepOptions& opt) {

@@ -21,7 +21,14 @@ struct SweepOptions {
   std::int64_t batch_size = 4096;     // rows handed to the sink at once (the flush unit)
   SimdTarget target = best_simd_target();
   ProgressCounters* progress = nullptr;  // bumped as runs complete
+  int shard_index = 0, shard_count = 1;  // this process runs run_ids i with i % count == index
+  std::int64_t skip = 0;                 // runs of the shard already done (resume)
+  const std::atomic<bool>* stop = nullptr;  // set by SIGINT/SIGTERM: finish runs in flight, return
 };
+
+// Runs of shard K of N (strided, so each shard samples the whole grid).
+std::int64_t shard_size(std::int64_t total, int index, int count);
+inline std::int64_t shard_run_id(std::int64_t j, int index, int count) { return index + j * std::int64_t(count); }
 
 using RowSink = std::function<void(const std::vector<RunRow>&)>;
 
@@ -29,8 +36,10 @@ using RowSink = std::function<void(const std::vector<RunRow>&)>;
 // sweep with bad input fails before any run starts.
 void preload_environments(const SweepSpec& spec, EnvironmentCache& cache);
 
-// Runs every run of `spec`, calling sink with consecutive batches.
-void run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink);
+// Runs the shard's runs after the first opt.skip, calling sink with
+// consecutive batches in run_id order; returns how many runs it handed over
+// (fewer than the shard's when stopped).
+std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink);
 
 // Runs already-resolved tuples (results in tuple order) on `opt`'s arena size.
 std::vector<RunRow> run_tuples(const std::vector<RunTuple>& tuples, const SweepOptions& opt);

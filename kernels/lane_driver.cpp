@@ -116,6 +116,7 @@ class LaneDriver final : public LaneSink {
   void load(int l) {
     Slot& s = slots_[std::size_t(l)];
     for (;;) {
+      if (q_.stop && q_.stop->load(std::memory_order_relaxed)) break;
       s.item = q_.next.fetch_add(1);
       if (s.item >= q_.n) break;
       s.t0 = clock_type::now();

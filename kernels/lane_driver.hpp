@@ -33,6 +33,9 @@ struct RunQueue {
   std::atomic<std::size_t> next{0};
   std::atomic<std::int64_t>* done = nullptr;
   std::atomic<std::int64_t>* not_ok = nullptr;
+  // When set, lanes take no new run; the runs in flight finish, so the runs
+  // done are exactly items [0, min(next, n)).
+  const std::atomic<bool>* stop = nullptr;
 };
 void run_queue(RunQueue& queue, SimdTarget target);
 
