@@ -3,6 +3,8 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <thread>
+#include <chrono>
 
 #include "result_columns.hpp"
 
@@ -24,6 +26,14 @@ hid_t text_type(std::size_t size) {
   return t;
 }
 
+// Opens quietly: a failure becomes our own error message, not an HDF5 stack dump.
+hid_t open_quiet(const std::string& path, unsigned flags) {
+  hid_t f;
+  H5E_BEGIN_TRY { f = H5Fopen(path.c_str(), flags, H5P_DEFAULT); }
+  H5E_END_TRY;
+  return f;
+}
+
 // RAII for the handles of the readers.
 struct Handle {
   hid_t id;
@@ -37,7 +47,7 @@ struct Handle {
 template <class T>
 std::vector<T> read_member(const std::string& path, const std::string& column, hid_t member_type,
                            std::size_t elem_size) {
-  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
   if (file.id < 0) h5_fail("cannot open " + path);
   Handle dset{H5Dopen2(file.id, "/runs", H5P_DEFAULT), H5Dclose};
   if (dset.id < 0) h5_fail(path + " has no /runs dataset");
@@ -116,7 +126,14 @@ H5RunWriter::~H5RunWriter() {
 
 void H5RunWriter::open() {
   if (file_ >= 0) return;
-  file_ = H5Fopen(partial_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  // A reader (h5dump, a progress poll) may hold the file for a moment: HDF5's
+  // file lock then refuses us; retry for up to ~10 s before giving up.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    H5E_BEGIN_TRY { file_ = H5Fopen(partial_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT); }
+    H5E_END_TRY;
+    if (file_ >= 0 || !fs::exists(partial_)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
   if (file_ < 0) h5_fail("cannot open " + partial_ + " (a damaged partial file cannot be resumed)");
   dset_ = H5Dopen2(file_, "/runs", H5P_DEFAULT);
   if (dset_ < 0) h5_fail(partial_ + " has no /runs dataset");
@@ -203,12 +220,12 @@ std::vector<std::string> read_text_column(const std::string& path, const std::st
 }
 
 bool has_attribute(const std::string& path, const std::string& name) {
-  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
   return file.id >= 0 && H5Aexists(file.id, name.c_str()) > 0;
 }
 
 std::int64_t count_rows(const std::string& path) {
-  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
   if (file.id < 0) h5_fail("cannot open " + path);
   Handle dset{H5Dopen2(file.id, "/runs", H5P_DEFAULT), H5Dclose};
   if (dset.id < 0) h5_fail(path + " has no /runs dataset");
@@ -219,7 +236,7 @@ std::int64_t count_rows(const std::string& path) {
 }
 
 std::string read_attribute(const std::string& path, const std::string& name) {
-  Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
   if (file.id < 0) h5_fail("cannot open " + path);
   Handle attr{H5Aopen(file.id, name.c_str(), H5P_DEFAULT), H5Aclose};
   if (attr.id < 0) h5_fail(path + " has no attribute " + name);

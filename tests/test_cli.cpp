@@ -7,7 +7,13 @@
 #include <algorithm>
 #include <regex>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+
 #include "h5_store.hpp"
+#include "result_columns.hpp"
 #include "test_util.hpp"
 
 using namespace chaosweep;
@@ -135,4 +141,135 @@ TEST(CliRun, TraceWritesTheTrajectoryAsCsv) {
   EXPECT_NE(csv.find(",transit,"), std::string::npos);
   const auto rows = std::count(csv.begin(), csv.end(), '\n');
   EXPECT_GT(rows, 1000);
+}
+
+// ------------------------------------------------------- store robustness
+
+namespace {
+
+// 1,200 runs of the demo's map: a few seconds in 100-run batches.
+const char* long_sweep = R"(
+[fixed]
+size = 50
+sr = 4
+start = [0.5, 0.5]
+max_time = 10000
+[axes]
+A = { start = 0.35, stop = 0.65, num = 20 }
+B = { start = 0.1, stop = 0.8, num = 20 }
+C = [0.2, 0.3, 0.4]
+)";
+
+// Rows equal in every column but wall time (which is no part of a run's result).
+void expect_same_results(const std::string& a, const std::string& b) {
+  for (const chaosweep::Column& c : chaosweep::result_columns()) {
+    if (!c.deterministic) continue;
+    if (c.type == chaosweep::Column::Type::f64) {
+      const auto x = read_f64_column(a, c.name), y = read_f64_column(b, c.name);
+      ASSERT_EQ(x.size(), y.size()) << c.name;
+      for (std::size_t i = 0; i < x.size(); ++i)
+        ASSERT_TRUE(x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i]))) << c.name << " row " << i;
+    } else if (c.type == chaosweep::Column::Type::i64) {
+      ASSERT_EQ(read_i64_column(a, c.name), read_i64_column(b, c.name)) << c.name;
+    } else {
+      ASSERT_EQ(read_text_column(a, c.name), read_text_column(b, c.name)) << c.name;
+    }
+  }
+}
+
+// Waits until `partial` holds at least `rows` rows (read between the
+// writer's batches) or the process has ended; false on timeout.
+bool wait_for_rows(const std::string& partial, std::int64_t rows, int pid) {
+  for (int i = 0; i < 6000; ++i) {
+    if (std::filesystem::exists(partial)) {
+      try {
+        if (chaosweep::count_rows(partial) >= rows) return true;
+      } catch (const std::exception&) {
+        // the writer has the file open right now
+      }
+    }
+    if (waitpid(pid, nullptr, WNOHANG) == pid) return false;
+    usleep(10000);
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(CliSweep, KillNineThenResumeGivesTheUninterruptedFile) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), long_sweep);
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o ";
+  const int pid = chaosweep::test::start_chaosweep("sweep " + args + tmp.file("r.h5"));
+  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 200, pid)) << "the sweep wrote no batches";
+  kill(pid, SIGKILL);  // right after a batch: the next write is a batch away
+  EXPECT_EQ(chaosweep::test::wait_exit(pid), 128 + SIGKILL);
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5")));
+  const auto again = run_chaosweep("sweep " + args + tmp.file("r.h5"));
+  EXPECT_EQ(again.exit_code, 2);  // a partial file is never overwritten without --resume
+  EXPECT_NE(again.err.find("--resume"), std::string::npos) << again.err;
+  const auto resumed = run_chaosweep("sweep " + args + tmp.file("r.h5") + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const auto whole = run_chaosweep("sweep " + args + tmp.file("whole.h5"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  expect_same_results(tmp.file("r.h5"), tmp.file("whole.h5"));
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
+}
+
+TEST(CliSweep, SigintStopsCleanlyAndResumeCompletes) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), long_sweep);
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o " + tmp.file("r.h5");
+  const int pid = chaosweep::test::start_chaosweep("sweep " + args);
+  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 100, pid));
+  kill(pid, SIGINT);
+  EXPECT_EQ(chaosweep::test::wait_exit(pid), 130);
+  const std::int64_t kept = chaosweep::count_rows(tmp.file("r.h5.partial"));
+  EXPECT_GE(kept, 100);
+  EXPECT_LT(kept, 1200);
+  const auto resumed = run_chaosweep("sweep " + args + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
+  const auto done = run_chaosweep("sweep " + args + " --resume");  // idempotent: nothing left to do
+  EXPECT_EQ(done.exit_code, 0);
+}
+
+TEST(CliMerge, ShardsMergedEqualTheSingleMachineFile) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  std::string shards;
+  for (int k = 0; k < 3; ++k) {
+    const std::string out = tmp.file("shard" + std::to_string(k) + ".h5");
+    const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q --shard " + std::to_string(k) + "/3 -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    shards += " " + out;
+  }
+  const auto merged = run_chaosweep("merge -o " + tmp.file("merged.h5") + shards);
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  const auto whole = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("whole.h5"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  expect_same_results(tmp.file("merged.h5"), tmp.file("whole.h5"));
+  EXPECT_EQ(read_attribute(tmp.file("merged.h5"), "spec"), read_attribute(tmp.file("whole.h5"), "spec"));
+}
+
+TEST(CliMerge, NamesTheMissingShardAndWritesNothing) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  for (int k : {0, 2}) {
+    const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q --shard " + std::to_string(k) + "/3 -o " +
+                                 tmp.file("shard" + std::to_string(k) + ".h5"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto merged =
+      run_chaosweep("merge -o " + tmp.file("m.h5") + " " + tmp.file("shard0.h5") + " " + tmp.file("shard2.h5"));
+  EXPECT_EQ(merged.exit_code, 1);
+  EXPECT_NE(merged.out.find("re-run shards 1 of 3"), std::string::npos) << merged.out;
+  EXPECT_NE(merged.out.find("missing 6 runs"), std::string::npos) << merged.out;
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("m.h5")));
+}
+
+TEST(CliSweep, BadShardIsNamed) {
+  const auto r = run_chaosweep("sweep " + std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml -o /tmp/x.h5 --shard 3/3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--shard"), std::string::npos) << r.err;
 }

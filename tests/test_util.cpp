@@ -1,6 +1,7 @@
 #include "test_util.hpp"
 
 #include <sys/wait.h>
+#include <csignal>
 
 #include <atomic>
 #include <cstdio>
@@ -43,6 +44,22 @@ CommandResult run_chaosweep(const std::string& args) {
   const std::string cmd = std::string(CHAOSWEEP_BIN) + " " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(out), read_file(err)};
+}
+
+int start_chaosweep(const std::string& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = "exec " + std::string(CHAOSWEEP_BIN) + " " + args + " >/dev/null 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return int(pid);
+}
+
+int wait_exit(int pid) {
+  int status = 0;
+  waitpid(pid_t(pid), &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 RunParams small_run(double side) {

@@ -38,6 +38,11 @@ struct CommandResult {
 // Runs the built chaosweep binary with `args` (a shell-quoted string).
 CommandResult run_chaosweep(const std::string& args);
 
+// Starts the chaosweep binary with `args` in the background; returns its pid.
+int start_chaosweep(const std::string& args);
+// Waits for pid; returns its exit code, or 128 + signal.
+int wait_exit(int pid);
+
 // A small, fast, valid Arnold run: a `side` m map with 1 m cells.
 RunParams small_run(double side = 10.0);
 
