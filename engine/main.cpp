@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_run_command(app, action);
   add_sweep_command(app, action);
   add_merge_command(app, action);
+  add_compare_command(app, action);
   add_bench_command(app, action);
   try {
     app.parse(argc, argv);

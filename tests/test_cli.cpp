@@ -273,3 +273,44 @@ TEST(CliSweep, BadShardIsNamed) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--shard"), std::string::npos) << r.err;
 }
+
+namespace {
+// Overwrites one float cell of /runs in place (to fake a changed result).
+void poke_f64(const std::string& path, const char* column, hsize_t row, double value) {
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t dset = H5Dopen2(file, "/runs", H5P_DEFAULT);
+  hid_t mem = H5Tcreate(H5T_COMPOUND, sizeof(double));
+  H5Tinsert(mem, column, 0, H5T_NATIVE_DOUBLE);
+  hid_t fspace = H5Dget_space(dset);
+  const hsize_t count = 1;
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, &row, nullptr, &count, nullptr);
+  hid_t mspace = H5Screate_simple(1, &count, nullptr);
+  H5Dwrite(dset, mem, mspace, fspace, H5P_DEFAULT, &value);
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  H5Tclose(mem);
+  H5Dclose(dset);
+  H5Fclose(file);
+}
+}  // namespace
+
+TEST(CliCompare, ExitsZeroOnIdenticalAndOneOnAChangeBeyondTolerance) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  for (const char* name : {"a.h5", "b.h5"}) {
+    const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file(name));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto same = run_chaosweep("compare " + tmp.file("a.h5") + " " + tmp.file("b.h5"));
+  EXPECT_EQ(same.exit_code, 0) << same.out;
+  EXPECT_NE(same.out.find("18 identical, 0 changed"), std::string::npos) << same.out;
+
+  const double t_end = read_f64_column(tmp.file("b.h5"), "t_end")[3];
+  poke_f64(tmp.file("b.h5"), "t_end", 3, t_end * (1 + 1e-9));
+  const auto changed = run_chaosweep("compare " + tmp.file("a.h5") + " " + tmp.file("b.h5"));
+  EXPECT_EQ(changed.exit_code, 1);
+  EXPECT_NE(changed.out.find("run_id 3: t_end"), std::string::npos) << changed.out;
+  EXPECT_NE(changed.out.find("1 changed"), std::string::npos) << changed.out;
+  const auto tolerated = run_chaosweep("compare " + tmp.file("a.h5") + " " + tmp.file("b.h5") + " --rtol 1e-8");
+  EXPECT_EQ(tolerated.exit_code, 0) << tolerated.out;
+}

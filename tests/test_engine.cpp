@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "environment_loader.hpp"
+#include "h5_compare.hpp"
 #include "h5_store.hpp"
 #include "json_writer.hpp"
 #include "result_columns.hpp"
@@ -326,6 +327,20 @@ TEST(Progress, LineShowsDoneTotalRateEtaAndFailures) {
   EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0), "250/1000 runs (25.0%), 25 runs/s, ETA 30s, 12 not ok");
   EXPECT_EQ(ProgressReporter::line(1000, 1000, 0, 100.0), "1000/1000 runs (100.0%), 10 runs/s, ETA 0s, 0 not ok");
   EXPECT_EQ(ProgressReporter::line(10, 100000, 0, 1.0), "10/100000 runs (0.0%), 10 runs/s, ETA 2h46m, 0 not ok");
+}
+
+TEST(Compare, MannWhitneyTellsShiftedFromSameDistributions) {
+  std::vector<double> x, y, z;
+  for (int i = 0; i < 200; ++i) {
+    x.push_back(std::sin(i * 1.7) * 100);
+    y.push_back(std::sin(i * 2.3 + 1) * 100);  // same spread, other samples
+    z.push_back(std::sin(i * 1.7) * 100 + 60);  // shifted
+  }
+  EXPECT_NEAR(mann_whitney_p(x, x), 1.0, 1e-12);
+  EXPECT_GT(mann_whitney_p(x, y), 0.05);
+  EXPECT_LT(mann_whitney_p(x, z), 1e-6);
+  EXPECT_NEAR(mann_whitney_p(x, z), mann_whitney_p(z, x), 1e-12);
+  EXPECT_TRUE(std::isnan(mann_whitney_p({}, x)));
 }
 
 // ------------------------------------------------------------------- store

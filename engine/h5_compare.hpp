@@ -1,0 +1,36 @@
+#pragma once
+// `chaosweep compare A.h5 B.h5`: runs aligned on their parameters (run_id for
+// the same spec, param_hash otherwise), every output column compared with
+// tolerances, and per group a rank test of the coverage-time distributions.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace chaosweep {
+
+struct CompareOptions {
+  double rtol = 0.0, atol = 0.0;  // |a - b| <= atol + rtol * |b| for float columns
+  int show = 10;                  // differences listed in the report
+};
+
+struct CompareReport {
+  std::int64_t aligned = 0, identical = 0, changed = 0, missing = 0, extra = 0;
+  bool by_run_id = true;
+  std::vector<std::string> details;  // first differences: run, column, values
+  struct Group {
+    std::string key;
+    std::int64_t ok_a, ok_b;
+    double median_a, median_b, p_value;  // Mann-Whitney U, two-sided
+  };
+  std::vector<Group> groups;
+  bool same() const { return changed == 0 && missing == 0 && extra == 0; }
+  std::string text() const;
+};
+
+CompareReport compare_results(const std::string& a, const std::string& b, const CompareOptions& opt);
+
+// Two-sided p-value of the Mann-Whitney U test (normal approximation with tie
+// correction); NaN when a sample is empty.
+double mann_whitney_p(const std::vector<double>& x, const std::vector<double>& y);
+
+}  // namespace chaosweep
