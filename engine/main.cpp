@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.add_flag("--version", version, "print version, git commit and exit");
   std::function<int()> action;
   add_run_command(app, action);
+  add_plan_command(app, action);
   add_sweep_command(app, action);
   add_merge_command(app, action);
   add_compare_command(app, action);

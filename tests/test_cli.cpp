@@ -314,3 +314,16 @@ TEST(CliCompare, ExitsZeroOnIdenticalAndOneOnAChangeBeyondTolerance) {
   const auto tolerated = run_chaosweep("compare " + tmp.file("a.h5") + " " + tmp.file("b.h5") + " --rtol 1e-8");
   EXPECT_EQ(tolerated.exit_code, 0) << tolerated.out;
 }
+
+TEST(CliPlan, ShowsRunsAxesAndAWorkBound) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  const auto r = run_chaosweep("plan " + tmp.file("s.toml"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("runs        18  (3 x 2 x 3)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("A: 3 values: 0.4, 0.5, 0.6"), std::string::npos) << r.out;
+  // 18 runs, each at most 2000 s / 0.1 s steps.
+  EXPECT_NE(r.out.find("at most 3.6e+05 integration steps"), std::string::npos) << r.out;
+  const auto bad = run_chaosweep("plan " + std::string(CHAOSWEEP_SOURCE_DIR) + "/README.md");
+  EXPECT_EQ(bad.exit_code, 2);
+}

@@ -1,0 +1,109 @@
+// `chaosweep plan SPEC.toml`: what a sweep will do, before doing it.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "cli_subcommands.hpp"
+#include "lane_driver.hpp"
+#include "metrics.hpp"
+#include "simd_choice.hpp"
+#include "sweep_runner.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+std::string preview(const Axis& axis) {
+  std::string s;
+  const std::size_t n = axis.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (n > 8 && i == 3) {
+      s += ", ...";
+      i = n - 3;
+    }
+    std::string v;
+    for (const auto& [key, value] : axis.values[i]) {
+      if (!v.empty()) v += ' ';
+      if (axis.kind != "axis") v.append(key).append("=");
+      v += to_text(value);
+    }
+    if (!s.empty()) s += ", ";
+    if (axis.kind == "axis") s += v;
+    else s.append("{").append(v).append("}");
+  }
+  return s;
+}
+
+// ns per lane-step of this machine's kernels on (up to) 16 of the spec's own
+// runs, each cut to 2000 steps.
+double calibrate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget target) {
+  std::vector<RunTuple> tuples;
+  const std::int64_t n = std::min<std::int64_t>(16, spec.size());
+  for (std::int64_t k = 0; k < n; ++k) {
+    RunTuple t = resolve_run(k * spec.size() / n, spec.run(k * spec.size() / n), cache);
+    t.params.max_time = 2000 * t.params.f * t.params.dt;
+    tuples.push_back(t);
+  }
+  std::vector<BatchItem> items;
+  for (const RunTuple& t : tuples) items.push_back({&t.params, t.env.get()});
+  std::vector<RunResult> results(items.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  run_batch(items.data(), results.data(), items.size(), target);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double steps = 0;
+  for (const RunResult& r : results) steps += double(r.steps + r.transit_points);
+  return steps > 0 ? 1e9 * s / steps : NAN;
+}
+
+}  // namespace
+
+void add_plan_command(CLI::App& app, std::function<int()>& action) {
+  auto* cmd = app.add_subcommand("plan", "Show what a sweep spec expands to and bound its work, without running it");
+  auto spec_path = std::make_shared<std::string>();
+  cmd->add_option("spec", *spec_path, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
+  cmd->callback([spec_path, &action] {
+    action = [spec_path]() -> int {
+      SweepSpec spec;
+      EnvironmentCache cache;
+      SimdTarget target;
+      double bound_steps = 0;
+      try {
+        target = selected_simd_target();
+        spec = load_sweep_spec(*spec_path);
+        for (std::int64_t i = 0; i < spec.size(); ++i) {
+          const RunTuple t = resolve_run(i, spec.run(i), cache);
+          const RunParams& p = t.params;
+          const double free_area = t.env->lx * t.env->ly - t.env->obstacle_area();
+          const double budget = p.max_time > 0 ? p.max_time : p.max_pr * t_opt(p.dc, free_area, p.sr, p.v);
+          bound_steps += std::ceil(budget / (p.planner == Planner::logistic ? p.dt_c : p.f * p.dt));
+        }
+      } catch (const std::exception& e) {
+        std::cerr << "chaosweep plan: " << e.what() << "\n";
+        return exit_bad_input;
+      }
+      std::cout << "sweep '" << spec.name << "'" << (spec.description.empty() ? "" : ": " + spec.description) << "\n";
+      std::string shape;
+      for (const Axis& a : spec.axes) shape += (shape.empty() ? "" : " x ") + std::to_string(a.size());
+      std::cout << "runs        " << spec.size() << (shape.empty() ? "" : "  (" + shape + ")") << "\n";
+      std::cout << "axes        (first varies slowest)\n";
+      for (const Axis& a : spec.axes) std::cout << "  " << a.name() << ": " << a.size() << " values: " << preview(a) << "\n";
+      const RunSpec first = spec.run(0);
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "first run   env %s, %g x %g m, sr %g m, planner %s, variant %s\n", first.env.c_str(),
+                    first.params.size_x, first.params.size_y, first.params.sr, to_string(first.params.planner),
+                    variant_name(first.params).c_str());
+      std::cout << buf;
+      const double ns = calibrate(spec, cache, target);
+      std::snprintf(buf, sizeof buf,
+                    "work        at most %.3g integration steps (every run to its time budget; most end sooner)\n"
+                    "            %.1f ns per lane-step measured here (%s kernels) -> at most %.3g core-hours\n",
+                    bound_steps, ns, to_string(target), bound_steps * ns * 1e-9 / 3600);
+      std::cout << buf;
+      return exit_ok;
+    };
+  });
+}
+
+}  // namespace chaosweep
