@@ -43,21 +43,31 @@ struct Handle {
   }
 };
 
+// /runs of a result file, opened read-only, with its row count.
+struct RunsDataset {
+  Handle file, dset;
+  hsize_t rows = 0;
+  explicit RunsDataset(const std::string& path)
+      : file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose}, dset{-1, H5Dclose} {
+    if (file.id < 0) h5_fail("cannot open " + path);
+    dset.id = H5Dopen2(file.id, "/runs", H5P_DEFAULT);
+    if (dset.id < 0) h5_fail(path + " has no /runs dataset");
+    Handle space{H5Dget_space(dset.id), H5Sclose};
+    H5Sget_simple_extent_dims(space.id, &rows, nullptr);
+  }
+};
+
 // Reads one member of /runs into a buffer of `member_type` elements.
 template <class T>
 std::vector<T> read_member(const std::string& path, const std::string& column, hid_t member_type,
                            std::size_t elem_size) {
-  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
-  if (file.id < 0) h5_fail("cannot open " + path);
-  Handle dset{H5Dopen2(file.id, "/runs", H5P_DEFAULT), H5Dclose};
-  if (dset.id < 0) h5_fail(path + " has no /runs dataset");
-  Handle space{H5Dget_space(dset.id), H5Sclose};
-  hsize_t n = 0;
-  H5Sget_simple_extent_dims(space.id, &n, nullptr);
+  const RunsDataset runs(path);
+  const hid_t dset_id = runs.dset.id;
+  const hsize_t n = runs.rows;
   Handle mem{H5Tcreate(H5T_COMPOUND, elem_size), H5Tclose};
   H5Tinsert(mem.id, column.c_str(), 0, member_type);
   std::vector<T> out(n);
-  if (n > 0 && H5Dread(dset.id, mem.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+  if (n > 0 && H5Dread(dset_id, mem.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     h5_fail("cannot read column '" + column + "' of " + path);
   return out;
 }
@@ -219,21 +229,7 @@ std::vector<std::string> read_text_column(const std::string& path, const std::st
   return out;
 }
 
-bool has_attribute(const std::string& path, const std::string& name) {
-  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
-  return file.id >= 0 && H5Aexists(file.id, name.c_str()) > 0;
-}
-
-std::int64_t count_rows(const std::string& path) {
-  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
-  if (file.id < 0) h5_fail("cannot open " + path);
-  Handle dset{H5Dopen2(file.id, "/runs", H5P_DEFAULT), H5Dclose};
-  if (dset.id < 0) h5_fail(path + " has no /runs dataset");
-  Handle space{H5Dget_space(dset.id), H5Sclose};
-  hsize_t n = 0;
-  H5Sget_simple_extent_dims(space.id, &n, nullptr);
-  return std::int64_t(n);
-}
+std::int64_t count_rows(const std::string& path) { return std::int64_t(RunsDataset(path).rows); }
 
 std::string read_attribute(const std::string& path, const std::string& name) {
   Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};

@@ -47,7 +47,6 @@ std::vector<double> read_f64_column(const std::string& path, const std::string& 
 std::vector<std::int64_t> read_i64_column(const std::string& path, const std::string& column);
 std::vector<std::string> read_text_column(const std::string& path, const std::string& column);
 std::string read_attribute(const std::string& path, const std::string& name);
-bool has_attribute(const std::string& path, const std::string& name);
 std::int64_t count_rows(const std::string& path);
 
 }  // namespace chaosweep
