@@ -16,6 +16,7 @@ namespace chaosweep {
 namespace {
 
 std::string preview(const Axis& axis) {
+  if (axis.kind == "repeat") return "each run's seed = splitmix64(master seed, run_id)";
   std::string s;
   const std::size_t n = axis.size();
   for (std::size_t i = 0; i < n; ++i) {

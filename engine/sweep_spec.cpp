@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "param_table.hpp"
+#include "splitmix.hpp"
 
 namespace chaosweep {
 
@@ -167,7 +168,13 @@ std::int64_t SweepSpec::size() const {
   return n;
 }
 
+std::int64_t repeat_seed(std::uint64_t master, std::int64_t run_id) {
+  std::uint64_t state = master + std::uint64_t(run_id) * 0x9e3779b97f4a7c15ULL;
+  return std::int64_t(splitmix64(state) >> 11);
+}
+
 RunSpec SweepSpec::run(std::int64_t i) const {
+  const std::int64_t run_id = i;
   RunSpec r = base;
   // Mixed radix, last axis fastest; each axis sets its keys in order.
   std::vector<std::size_t> pos(axes.size());
@@ -178,6 +185,7 @@ RunSpec SweepSpec::run(std::int64_t i) const {
   }
   for (std::size_t k = 0; k < axes.size(); ++k)
     for (const auto& [key, value] : axes[k].values[pos[k]]) apply_setting(r, key, value);
+  if (repeat) r.params.seed = repeat_seed(master_seed, run_id);
   return r;
 }
 
@@ -215,6 +223,76 @@ void check_axis(const Axis& axis, const RunSpec& base, const std::string& where)
   }
 }
 
+// [sample]: n points, Latin-hypercube ("lhs": each range cut into n equal
+// strata, one point per stratum, strata paired by seeded permutations) or
+// independent uniform ("random"); a list draws one of its values. One axis.
+Axis parse_sample(const toml::table& t, const std::string& where, std::set<std::string>& used) {
+  std::string method = "lhs";
+  std::int64_t n = 0;
+  std::uint64_t seed = 0;
+  struct Dim {
+    std::string key;
+    double lo = 0, hi = 0;
+    std::vector<SpecValue> choices;
+  };
+  std::vector<std::pair<std::uint32_t, Dim>> dims;
+  for (auto&& [k, node] : t) {
+    const std::string key(k.str());
+    if (key == "method") {
+      const auto m = node.value<std::string>();
+      if (!m || (*m != "lhs" && *m != "random")) fail(where + ".method", "must be \"lhs\" or \"random\"");
+      method = *m;
+    } else if (key == "n" || key == "seed") {
+      const auto v = node.value<double>();
+      if (!v || !(*v >= 0 && *v == std::floor(*v) && *v < 9.007199254740992e15))
+        fail(where + "." + key, "must be a whole number >= 0");
+      if (key == "n") n = std::int64_t(*v);
+      else seed = std::uint64_t(*v);
+    } else {
+      if (used.count(key)) fail(where + "." + key, "is also in [fixed] or another axis; give it in one place");
+      used.insert(key);
+      Dim d;
+      d.key = key;
+      if (const toml::table* r = node.as_table()) {
+        const auto lo = (*r)["min"].value<double>(), hi = (*r)["max"].value<double>();
+        if (!lo || !hi || r->size() != 2) fail(where + "." + key, "a range is {min = a, max = b}");
+        if (!(*lo <= *hi)) fail(where + "." + key, "needs min <= max");
+        const ParamInfo* info = find_param(key);
+        if (!info || info->kind != ParamInfo::Kind::real)
+          fail(where + "." + key, "a {min, max} range needs a real-valued parameter; give a list of values");
+        d.lo = *lo;
+        d.hi = *hi;
+      } else if (node.is_array()) {
+        d.choices = axis_values(node, where + "." + key);
+      } else {
+        fail(where + "." + key, "must be a range {min, max} or a list of values");
+      }
+      dims.emplace_back(node.source().begin.line, std::move(d));
+    }
+  }
+  if (n < 1 || n > 100000000) fail(where + ".n", "must be in [1, 1e8]");
+  if (dims.empty()) fail(where, "samples nothing: add parameters as {min, max} or lists");
+  std::stable_sort(dims.begin(), dims.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Axis axis{"sample", {}, std::vector<Settings>(std::size_t(n))};
+  std::uint64_t state = seed;
+  for (auto& [line, d] : dims) {
+    axis.keys.push_back(d.key);
+    std::vector<std::int64_t> stratum(static_cast<std::size_t>(n));
+    for (std::int64_t i = 0; i < n; ++i) stratum[std::size_t(i)] = i;
+    for (std::int64_t i = n - 1; i > 0; --i)  // Fisher-Yates with splitmix64
+      std::swap(stratum[std::size_t(i)], stratum[std::size_t(splitmix64(state) % std::uint64_t(i + 1))]);
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double u = uniform01(state);
+      const double w = method == "lhs" ? (double(stratum[std::size_t(i)]) + u) / double(n) : u;
+      SpecValue v;
+      if (d.choices.empty()) v = d.lo + (d.hi - d.lo) * w;
+      else v = d.choices[std::min(d.choices.size() - 1, std::size_t(w * double(d.choices.size())))];
+      axis.values[std::size_t(i)].emplace_back(d.key, v);
+    }
+  }
+  return axis;
+}
+
 toml::table parse_toml(const std::string& text, const std::string& source_name) {
   try {
     return toml::parse(text, source_name);
@@ -244,8 +322,9 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
       if (!node.is_array_of_tables()) fail(source_name, "'zip' must be written as [[zip]] tables");
     } else if (key == "case") {
       if (!node.is_array_of_tables()) fail(source_name, "'case' must be written as [[case]] tables");
-    } else if (key != "sweep" && key != "fixed" && key != "axes") {
-      fail(source_name, "unknown section '" + key + "' (allowed: [sweep], [fixed], [axes], [[zip]], [[case]])");
+    } else if (key != "sweep" && key != "fixed" && key != "axes" && key != "sample" && key != "repeat") {
+      fail(source_name,
+           "unknown section '" + key + "' (allowed: [sweep], [fixed], [axes], [[zip]], [[case]], [sample], [repeat])");
     } else if (!node.is_table()) {
       fail(source_name, "'" + key + "' must be a table");
     }
@@ -354,6 +433,29 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
     axis.keys.assign(keys.begin(), keys.end());
     check_axis(axis, spec.base, source_name + ": case");
     if (!axis.values.empty()) ordered.emplace_back(cases->source().begin.line, std::move(axis));
+  }
+  if (const toml::table* t = root["sample"].as_table()) {
+    Axis axis = parse_sample(*t, source_name + ": sample", used);
+    check_axis(axis, spec.base, source_name + ": sample");
+    ordered.emplace_back(t->source().begin.line, std::move(axis));
+  }
+  if (const toml::table* t = root["repeat"].as_table()) {
+    const std::string where = source_name + ": repeat";
+    if (used.count("seed")) fail(where, "sets every run's seed: 'seed' must not be given elsewhere");
+    std::int64_t count = 0;
+    for (auto&& [k, node] : *t) {
+      const std::string key(k.str());
+      const auto v = node.value<double>();
+      if (!v || !(*v >= 0 && *v == std::floor(*v) && *v < 9.007199254740992e15))
+        fail(where + "." + key, "must be a whole number >= 0");
+      if (key == "count") count = std::int64_t(*v);
+      else if (key == "seed") spec.master_seed = std::uint64_t(*v);
+      else fail(where, "unknown key '" + key + "' (allowed: count, seed)");
+    }
+    if (count < 1 || count > 100000000) fail(where + ".count", "must be in [1, 1e8]");
+    spec.repeat = true;
+    Axis axis{"repeat", {"seed"}, std::vector<Settings>(std::size_t(count))};
+    ordered.emplace_back(t->source().begin.line, std::move(axis));
   }
   // toml++ keeps keys sorted; restore the order the user wrote.
   std::stable_sort(ordered.begin(), ordered.end(), [](const auto& x, const auto& y) { return x.first < y.first; });

@@ -47,6 +47,9 @@ struct SweepSpec {
   std::string text;  // the spec as written (with any extended spec), for provenance
   RunSpec base;
   std::vector<Axis> axes;
+  // [repeat]: each run's `seed` = splitmix64 of (master seed, run_id).
+  bool repeat = false;
+  std::uint64_t master_seed = 0;
 
   std::int64_t size() const;
   RunSpec run(std::int64_t i) const;  // 0 <= i < size()
@@ -60,6 +63,10 @@ SweepSpec load_sweep_spec(const std::string& path);
 // Sets `key` (a parameter name, or size, start, ic, env, label) to v.
 // Throws SpecError naming the key and its allowed values.
 void apply_setting(RunSpec& r, const std::string& key, const SpecValue& v);
+
+// The seed of run `run_id` under [repeat] with `master`: splitmix64 of
+// master + run_id * golden ratio, kept to 53 bits (exact as a double).
+std::int64_t repeat_seed(std::uint64_t master, std::int64_t run_id);
 
 // Keys apply_setting accepts, for messages.
 std::string known_keys();

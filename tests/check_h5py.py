@@ -3,6 +3,7 @@
 pd.DataFrame(f["runs"][:])): runs a small sweep, then checks columns, types,
 values and provenance from Python. Usage: check_h5py.py CHAOSWEEP_BIN"""
 import math
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -49,4 +50,8 @@ with tempfile.TemporaryDirectory() as d:
             assert key in attrs, key
         assert "A = [0.4, 0.5]" in attrs["spec"]
         assert attrs["shard"] == "0/1" and attrs["runs_total"] == "6"
+    dump = shutil.which("h5dump")
+    if dump:  # Debian's hdf5-tools, installed by ./quickstart
+        header = subprocess.run([dump, "-H", str(out)], check=True, capture_output=True, text=True).stdout
+        assert 'DATASET "runs"' in header and '"coverage_time"' in header
 print("h5py reads the result store: ok")

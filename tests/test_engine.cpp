@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <set>
+#include <tuple>
 #include <filesystem>
 
 #include "environment_loader.hpp"
@@ -127,6 +129,48 @@ TEST(SweepSpec, CaseTablesAreOneAxisOfRows) {
   EXPECT_EQ(s.run(3).params.c, 0.5);
   EXPECT_EQ(s.run(3).params.seed, 1);
   EXPECT_NE(error_of("[[case]]\nsize = 20\n[[case]]\nsr = -1\n").find("case[1].sr"), std::string::npos);
+}
+
+TEST(SweepSpec, LatinHypercubePutsOnePointInEveryStratum) {
+  const char* text = "[sample]\nmethod = \"lhs\"\nn = 50\nseed = 3\nA = { min = 0.3, max = 0.8 }\n"
+                     "C = { min = 0.2, max = 0.4 }\nds_index = [1, 2, 3]\n";
+  const SweepSpec s = parse_sweep_spec(text, "x");
+  ASSERT_EQ(s.size(), 50);
+  for (const auto& [key, lo, width] : {std::tuple{"A", 0.3, 0.5}, std::tuple{"C", 0.2, 0.2}}) {
+    std::vector<int> hits(50, 0);
+    for (std::int64_t i = 0; i < 50; ++i) {
+      const RunParams p = s.run(i).params;
+      const double v = std::string(key) == "A" ? p.A : p.C;
+      ASSERT_GE(v, lo);
+      ASSERT_LT(v, lo + width);
+      ++hits[std::size_t((v - lo) / width * 50)];
+    }
+    for (int h : hits) EXPECT_EQ(h, 1) << key;
+  }
+  // The same seed gives the same points; another seed other points.
+  EXPECT_EQ(parse_sweep_spec(text, "x").run(17).params.A, s.run(17).params.A);
+  std::string other = text;
+  other.replace(other.find("seed = 3"), 8, "seed = 4");
+  EXPECT_NE(parse_sweep_spec(other, "x").run(17).params.A, s.run(17).params.A);
+  const SweepSpec r = parse_sweep_spec("[sample]\nmethod = \"random\"\nn = 20\nA = { min = 1, max = 2 }\n", "x");
+  for (std::int64_t i = 0; i < 20; ++i) EXPECT_TRUE(r.run(i).params.A >= 1 && r.run(i).params.A < 2);
+}
+
+TEST(SweepSpec, RepeatsDeriveEachRunsSeedFromMasterSeedAndRunId) {
+  const SweepSpec s = parse_sweep_spec("[axes]\nA = [0.4, 0.5]\n[repeat]\ncount = 4\nseed = 99\n", "x");
+  ASSERT_EQ(s.size(), 8);
+  std::set<std::int64_t> seeds;
+  for (std::int64_t i = 0; i < 8; ++i) {
+    EXPECT_EQ(s.run(i).params.seed, repeat_seed(99, i));
+    seeds.insert(s.run(i).params.seed);
+  }
+  EXPECT_EQ(seeds.size(), 8u);
+  EXPECT_EQ(s.run(5).params.A, 0.5);
+  EXPECT_LT(repeat_seed(99, 5), std::int64_t(1) << 53);
+  EXPECT_NE(error_of("[fixed]\nseed = 3\n[repeat]\ncount = 2\n").find("'seed' must not be given"), std::string::npos);
+  EXPECT_NE(error_of("[sample]\nn = 5\nds_index = { min = 1, max = 3 }\n").find("give a list"), std::string::npos);
+  EXPECT_NE(error_of("[sample]\nA = { min = 1, max = 2 }\n").find("sample.n"), std::string::npos);
+  EXPECT_NE(error_of("[sample]\nn = 3\nmethod = \"sobol\"\nA = [1]\n").find("lhs"), std::string::npos);
 }
 
 TEST(SweepSpec, ExtendsAnotherSpecAndAddsAxes) {
