@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "h5_store.hpp"
@@ -20,11 +21,16 @@ struct Table {
   std::map<std::string, std::vector<std::int64_t>> i64;
   std::map<std::string, std::vector<std::string>> text;
 
+  std::set<std::string> names;
+
   explicit Table(const std::string& path) {
+    for (const std::string& n : column_names(path)) names.insert(n);
+    for (const char* key : {"run_id", "param_hash", "status", "coverage_time", "variant", "env", "size_x", "size_y", "sr"})
+      if (!names.count(key)) throw std::runtime_error(path + " has no '" + key + "' column: not a chaosweep result file");
     run_id = read_i64_column(path, "run_id");
     param_hash = read_i64_column(path, "param_hash");
     for (const Column& c : result_columns()) {
-      if (!c.deterministic) continue;
+      if (!c.deterministic || !names.count(c.name)) continue;
       if (c.type == Column::Type::f64) f64[c.name] = read_f64_column(path, c.name);
       else if (c.type == Column::Type::i64) i64[c.name] = read_i64_column(path, c.name);
       else text[c.name] = read_text_column(path, c.name);
@@ -82,6 +88,10 @@ CompareReport compare_results(const std::string& a_path, const std::string& b_pa
   CompareReport rep;
   const Table a(a_path), b(b_path);
   rep.by_run_id = read_attribute(a_path, "spec_hash") == read_attribute(b_path, "spec_hash");
+  for (const std::string& n : a.names)
+    if (!b.names.count(n)) rep.schema.push_back("column '" + n + "' only in A");
+  for (const std::string& n : b.names)
+    if (!a.names.count(n)) rep.schema.push_back("column '" + n + "' only in B");
   const auto& ka = rep.by_run_id ? a.run_id : a.param_hash;
   const auto& kb = rep.by_run_id ? b.run_id : b.param_hash;
   std::map<std::int64_t, std::size_t> index_b;
@@ -154,6 +164,7 @@ std::string CompareReport::text() const {
                   ": " + std::to_string(aligned) + " runs, " + std::to_string(identical) + " identical, " +
                   std::to_string(changed) + " changed; " + std::to_string(missing) + " only in A, " +
                   std::to_string(extra) + " only in B\n";
+  for (const std::string& d : schema) s += "  " + d + "\n";
   for (const std::string& d : details) s += "  " + d + "\n";
   s += "coverage time of ok runs per group (Mann-Whitney U):\n";
   for (const Group& g : groups) {

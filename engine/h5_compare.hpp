@@ -17,13 +17,14 @@ struct CompareReport {
   std::int64_t aligned = 0, identical = 0, changed = 0, missing = 0, extra = 0;
   bool by_run_id = true;
   std::vector<std::string> details;  // first differences: run, column, values
+  std::vector<std::string> schema;   // columns only one file has (other engine versions)
   struct Group {
     std::string key;
     std::int64_t ok_a, ok_b;
     double median_a, median_b, p_value;  // Mann-Whitney U, two-sided
   };
   std::vector<Group> groups;
-  bool same() const { return changed == 0 && missing == 0 && extra == 0; }
+  bool same() const { return changed == 0 && missing == 0 && extra == 0 && schema.empty(); }
   std::string text() const;
 };
 

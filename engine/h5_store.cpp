@@ -231,6 +231,18 @@ std::vector<std::string> read_text_column(const std::string& path, const std::st
 
 std::int64_t count_rows(const std::string& path) { return std::int64_t(RunsDataset(path).rows); }
 
+std::vector<std::string> column_names(const std::string& path) {
+  const RunsDataset runs(path);
+  Handle type{H5Dget_type(runs.dset.id), H5Tclose};
+  std::vector<std::string> names;
+  for (int i = 0; i < H5Tget_nmembers(type.id); ++i) {
+    char* name = H5Tget_member_name(type.id, unsigned(i));
+    names.emplace_back(name);
+    H5free_memory(name);
+  }
+  return names;
+}
+
 std::string read_attribute(const std::string& path, const std::string& name) {
   Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
   if (file.id < 0) h5_fail("cannot open " + path);

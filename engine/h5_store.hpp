@@ -48,5 +48,6 @@ std::vector<std::int64_t> read_i64_column(const std::string& path, const std::st
 std::vector<std::string> read_text_column(const std::string& path, const std::string& column);
 std::string read_attribute(const std::string& path, const std::string& name);
 std::int64_t count_rows(const std::string& path);
+std::vector<std::string> column_names(const std::string& path);
 
 }  // namespace chaosweep
