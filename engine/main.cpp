@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   add_sweep_command(app, action);
   add_merge_command(app, action);
   add_compare_command(app, action);
+  add_slurm_commands(app, action);
   add_bench_command(app, action);
   try {
     app.parse(argc, argv);
