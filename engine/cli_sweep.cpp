@@ -99,11 +99,11 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       SweepSpec spec;
       SimdTarget target;
       Shard shard;
+      EnvironmentCache cache;  // filled here to fail early; reused by the sweep
       try {
         target = selected_simd_target();
         shard = parse_shard(o->shard);
         spec = load_sweep_spec(o->spec);
-        EnvironmentCache cache;
         preload_environments(spec, cache);
       } catch (const std::exception& e) {
         std::cerr << "chaosweep sweep: " << e.what() << "\n";
@@ -192,7 +192,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
           written += run_sweep(spec, opt, [&](const std::vector<RunRow>& rows) {
             writer.append(rows);
             for (const RunRow& r : rows) summary.add(r);
-          });
+          }, &cache);
         }
         if (written < shard_runs) {
           std::cerr << "chaosweep sweep: interrupted: " << written << " of " << shard_runs << " runs are in "

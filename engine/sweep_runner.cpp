@@ -71,9 +71,11 @@ std::int64_t shard_size(std::int64_t total, int index, int count) {
   return index < total ? (total - index + count - 1) / count : 0;
 }
 
-std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink) {
-  EnvironmentCache cache;
-  preload_environments(spec, cache);
+std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink,
+                       EnvironmentCache* preloaded) {
+  EnvironmentCache own;
+  if (!preloaded) preload_environments(spec, own);
+  EnvironmentCache& cache = preloaded ? *preloaded : own;
   const std::int64_t total = shard_size(spec.size(), opt.shard_index, opt.shard_count);
   tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
   std::vector<RunRow> rows;

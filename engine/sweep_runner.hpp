@@ -38,8 +38,10 @@ void preload_environments(const SweepSpec& spec, EnvironmentCache& cache);
 
 // Runs the shard's runs after the first opt.skip, calling sink with
 // consecutive batches in run_id order; returns how many runs it handed over
-// (fewer than the shard's when stopped).
-std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink);
+// (fewer than the shard's when stopped). `preloaded`: a cache the caller has
+// already filled with preload_environments (saves a pass over the spec).
+std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink,
+                       EnvironmentCache* preloaded = nullptr);
 
 // Runs already-resolved tuples (results in tuple order) on `opt`'s arena size.
 std::vector<RunRow> run_tuples(const std::vector<RunTuple>& tuples, const SweepOptions& opt);
