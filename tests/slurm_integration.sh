@@ -52,7 +52,7 @@ PORT=$((17000 + ($$ % 1000) * 2))
 while ! port_free "$PORT" || ! port_free $((PORT + 1)); do PORT=$((PORT + 2)); done
 cat > "$SLURM_CONF" <<CONF
 ClusterName=chaosweeptest
-SlurmctldHost=localhost
+SlurmctldHost=localhost(127.0.0.1)
 SlurmUser=root
 SlurmdUser=root
 SlurmctldPort=$PORT
@@ -79,7 +79,7 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 MpiDefault=none
 ReturnToService=2
-NodeName=localhost CPUs=$(nproc) RealMemory=1000 State=UNKNOWN
+NodeName=localhost NodeAddr=127.0.0.1 NodeHostname=localhost CPUs=$(nproc) RealMemory=1000 State=UNKNOWN
 PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 CONF
 slurmctld -D >"$BASE/log/slurmctld.stdout" 2>&1 & PIDS+=($!)
