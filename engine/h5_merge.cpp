@@ -77,18 +77,6 @@ std::vector<std::string> attribute_names(const std::string& path) {
   return names;
 }
 
-void write_string_attribute(hid_t file, const std::string& name, const std::string& value) {
-  hid_t t = H5Tcopy(H5T_C_S1);
-  H5Tset_size(t, H5T_VARIABLE);
-  H5Tset_cset(t, H5T_CSET_UTF8);
-  hid_t space = H5Screate(H5S_SCALAR);
-  hid_t attr = H5Acreate2(file, name.c_str(), t, space, H5P_DEFAULT, H5P_DEFAULT);
-  const char* data = value.c_str();
-  H5Awrite(attr, t, &data);
-  H5Aclose(attr);
-  H5Sclose(space);
-  H5Tclose(t);
-}
 
 }  // namespace
 
@@ -174,14 +162,14 @@ MergeReport merge_results(const std::vector<std::string>& inputs, const std::str
   // Provenance: the first shard's, with the shard-specific entries replaced.
   for (const std::string& name : attribute_names(inputs[0])) {
     if (name == "shard") continue;
-    write_string_attribute(file, name, read_attribute(inputs[0], name));
+    write_text_attribute(file, name, read_attribute(inputs[0], name));
   }
   std::string from;
   for (const std::string& in : inputs) from += (from.empty() ? "" : "\n") + in;
-  write_string_attribute(file, "shard", "merged from " + std::to_string(inputs.size()) + " files of " +
+  write_text_attribute(file, "shard", "merged from " + std::to_string(inputs.size()) + " files of " +
                                             std::to_string(report.shard_count) + " shards");
-  write_string_attribute(file, "merged_from", from);
-  write_string_attribute(file, "merged_at", utc_now());
+  write_text_attribute(file, "merged_from", from);
+  write_text_attribute(file, "merged_at", utc_now());
   H5Fclose(file);
   if (rc < 0) fail("cannot write " + partial);
   fs::rename(partial, output);

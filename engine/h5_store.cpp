@@ -155,21 +155,30 @@ void H5RunWriter::close() {
   dset_ = file_ = -1;
 }
 
-void H5RunWriter::set_attribute(const std::string& name, const std::string& value) {
-  open();
+void write_text_attribute(hid_t loc, const std::string& name, const std::string& value) {
   hid_t t = H5Tcopy(H5T_C_S1);
   H5Tset_size(t, H5T_VARIABLE);
   H5Tset_cset(t, H5T_CSET_UTF8);
   hid_t space = H5Screate(H5S_SCALAR);
-  if (H5Aexists(file_, name.c_str()) > 0) H5Adelete(file_, name.c_str());
-  hid_t attr = H5Acreate2(file_, name.c_str(), t, space, H5P_DEFAULT, H5P_DEFAULT);
+  if (H5Aexists(loc, name.c_str()) > 0) H5Adelete(loc, name.c_str());
+  hid_t attr = H5Acreate2(loc, name.c_str(), t, space, H5P_DEFAULT, H5P_DEFAULT);
   const char* data = value.c_str();
   const herr_t rc = attr >= 0 ? H5Awrite(attr, t, &data) : -1;
   if (attr >= 0) H5Aclose(attr);
   H5Sclose(space);
   H5Tclose(t);
-  close();
   if (rc < 0) h5_fail("cannot write attribute " + name);
+}
+
+void H5RunWriter::set_attribute(const std::string& name, const std::string& value) {
+  open();
+  try {
+    write_text_attribute(file_, name, value);
+  } catch (...) {
+    close();
+    throw;
+  }
+  close();
 }
 
 void H5RunWriter::append(const std::vector<RunRow>& rows) {

@@ -42,6 +42,10 @@ class H5RunWriter {
   std::vector<std::size_t> offsets_;
 };
 
+// Writes (or replaces) a scalar variable-length UTF-8 string attribute on
+// `loc` (a file or group). Throws std::runtime_error.
+void write_text_attribute(hid_t loc, const std::string& name, const std::string& value);
+
 // Readers for tests and tools: one column of /runs, and root attributes.
 std::vector<double> read_f64_column(const std::string& path, const std::string& column);
 std::vector<std::int64_t> read_i64_column(const std::string& path, const std::string& column);

@@ -18,11 +18,7 @@ namespace {
 constexpr double max_runs = 1e12;
 constexpr double max_axis_values = 1e8;
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return format_number(v); }
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) {
   throw SpecError(where + ": " + what);

@@ -85,13 +85,13 @@ std::vector<ParamInfo> make_table() {
   return t;
 }
 
+}  // namespace
+
 std::string format_number(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
 }
-
-}  // namespace
 
 std::string ParamInfo::range_text() const {
   if (kind == Kind::choice) {

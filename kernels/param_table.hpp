@@ -32,6 +32,9 @@ struct ParamInfo {
 const std::vector<ParamInfo>& param_table();
 const ParamInfo* find_param(std::string_view name);
 
+// A number as messages show it (the shortest of iostream's default format).
+std::string format_number(double v);
+
 // First out-of-range parameter, as a message; empty when all are in range.
 std::string check_ranges(const RunParams& p);
 

@@ -14,11 +14,7 @@ namespace {
 // Bounds the grid's memory (one byte per cell) for absurd size/sr pairs.
 constexpr double max_cells = 1 << 28;
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return format_number(v); }
 }  // namespace
 
 std::string validate_run(const RunParams& p, const Environment& env) {
