@@ -49,12 +49,14 @@ inline Vec3<T> arnold_rhs(const Vec3<T>& u, const ArnoldCoeffs<T>& k) {
 }
 
 // Stages 2-4 of an RK4 step are the base state shifted by d = (h/2) k or h k.
-// When every such shift is small (|d| <= small_shift, guaranteed by
-// h * max(|A|+|C|, |B|+|A|, |C|+|B|) <= small_shift since |k| is bounded by
-// those sums), their sines and cosines come from the base state's by the
-// angle-addition formulas and short Taylor polynomials of d (truncation below
-// 2e-19 at the bound): about half the work of a full sincos. A run's mode is
-// a function of its parameters only, so every width computes a lane alike.
+// When every such shift is small, their sines and cosines come from the base
+// state's by angle addition and short Taylor polynomials of d: about a third
+// of the work of a full sincos. The mode holds when
+// h * max(|A|+|C|, |B|+|A|, |C|+|B|) <= small_shift (|k| is bounded by those
+// sums), so stages 2 and 3 shift by at most small_shift / 2 and stage 4 by at
+// most small_shift; each gets the shortest polynomial exact to below 1e-18 at
+// its bound. A run's mode is a function of its parameters only, so every
+// width computes a lane alike.
 inline constexpr double small_shift = 0.2;
 
 inline bool small_shift_mode(double h, double A, double B, double C) {
@@ -62,39 +64,45 @@ inline bool small_shift_mode(double h, double A, double B, double C) {
   return h * std::max({a + c, b + a, c + b}) <= small_shift;
 }
 
-template <class T>
+// sin(u + d), cos(u + d) from su = sin u, cu = cos u, as
+// su + (su (cos d - 1) + cu sin d): the correction is formed apart from the
+// leading term, which keeps the error near 1 ulp. Long: |d| <= 0.2 (Taylor to
+// d^11 / d^12, remainder < 2e-19), otherwise |d| <= 0.1 (to d^9 / d^10,
+// remainder < 3e-19).
+template <bool Long, class T>
 inline void sincos_shift(T su, T cu, T d, T& s, T& c) {
   using lane::fma;
   using lane::splat;
   const T d2 = d * d;
-  T ps = fma(d2, splat<T>(-1.0 / 39916800.0), splat<T>(1.0 / 362880.0));
+  T ps = splat<T>(1.0 / 362880.0);
+  if constexpr (Long) ps = fma(d2, splat<T>(-1.0 / 39916800.0), ps);
   ps = fma(ps, d2, splat<T>(-1.0 / 5040.0));
   ps = fma(ps, d2, splat<T>(1.0 / 120.0));
   ps = fma(ps, d2, splat<T>(-1.0 / 6.0));
-  const T sd = fma(d * d2, ps, d);
-  T pc = fma(d2, splat<T>(1.0 / 479001600.0), splat<T>(-1.0 / 3628800.0));
+  const T sd = fma(d * d2, ps, d);  // sin d
+  T pc = splat<T>(-1.0 / 3628800.0);
+  if constexpr (Long) pc = fma(d2, splat<T>(1.0 / 479001600.0), pc);
   pc = fma(pc, d2, splat<T>(1.0 / 40320.0));
   pc = fma(pc, d2, splat<T>(-1.0 / 720.0));
   pc = fma(pc, d2, splat<T>(1.0 / 24.0));
   pc = fma(pc, d2, splat<T>(-0.5));
-  const T cd = fma(d2, pc, splat<T>(1.0));
-  s = fma(su, cd, cu * sd);
-  c = fma(cu, cd, -(su * sd));
+  const T cm = d2 * pc;  // cos d - 1
+  s = fma(su, cm, fma(cu, sd, su));
+  c = fma(cu, cm, fma(-su, sd, cu));
 }
 
 // Trig of u + d, by shift when `small` holds for every lane, by full sincos
 // when for none, and lane by lane otherwise.
-template <class T, class M>
-inline Trig3<T> trig3_stage(const Trig3<T>& base, const Vec3<T>& u, T scale, const Vec3<T>& k, M small) {
-  using lane::fma;
+template <bool Long, class T, class M>
+inline Trig3<T> trig3_stage(const Trig3<T>& base, const Vec3<T>& u, const Vec3<T>& d, M small) {
   auto shifted = [&] {
     Trig3<T> t;
-    sincos_shift(base.sx, base.cx, scale * k.x, t.sx, t.cx);
-    sincos_shift(base.sy, base.cy, scale * k.y, t.sy, t.cy);
-    sincos_shift(base.sz, base.cz, scale * k.z, t.sz, t.cz);
+    sincos_shift<Long>(base.sx, base.cx, d.x, t.sx, t.cx);
+    sincos_shift<Long>(base.sy, base.cy, d.y, t.sy, t.cy);
+    sincos_shift<Long>(base.sz, base.cz, d.z, t.sz, t.cz);
     return t;
   };
-  auto full = [&] { return trig3(Vec3<T>{fma(scale, k.x, u.x), fma(scale, k.y, u.y), fma(scale, k.z, u.z)}); };
+  auto full = [&] { return trig3(Vec3<T>{u.x + d.x, u.y + d.y, u.z + d.z}); };
   if (lane::all(small)) return shifted();
   if (lane::none(small)) return full();
   const Trig3<T> a = shifted(), b = full();
@@ -138,29 +146,33 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const Hea
   using lane::fma;
   const T half = h * lane::splat<T>(0.5);
   const T two = lane::splat<T>(2.0);
-  // Each stage's trig is reduced at once to what later stages need (its
-  // derivative and heading), and stages 1+4 and 2+3 are summed as they come:
-  // this keeps few vectors live. The operations are the same in every width.
+  // The stage derivatives are taken in units of h/2 (K = (h/2) k, from the
+  // coefficients scaled once), so stages 2 and 3 shift by K1, K2 and stage 4
+  // by K3 + K3 (exact) with no further products. Each stage's trig is reduced
+  // at once to what later stages need (its K and heading), and stages 1+4 and
+  // 2+3 are summed as they come: this keeps few vectors live. The operations
+  // are the same in every width.
+  const ArnoldCoeffs<T> kh{half * k.A, half * k.B, half * k.C};
   const Trig3<T> t1 = trig3(u);
-  const Vec3<T> k1 = arnold_rhs(t1, k);
+  const Vec3<T> K1 = arnold_rhs(t1, kh);
   const T c1 = heading_cos(t1, hs), s1 = heading_sin(t1, hs);
-  const Trig3<T> t2 = trig3_stage(t1, u, half, k1, small);
-  const Vec3<T> k2 = arnold_rhs(t2, k);
+  const Trig3<T> t2 = trig3_stage<false>(t1, u, K1, small);
+  const Vec3<T> K2 = arnold_rhs(t2, kh);
   const T c2 = heading_cos(t2, hs), s2 = heading_sin(t2, hs);
-  const Trig3<T> t3 = trig3_stage(t1, u, half, k2, small);
-  const Vec3<T> k3 = arnold_rhs(t3, k);
+  const Trig3<T> t3 = trig3_stage<false>(t1, u, K2, small);
+  const Vec3<T> K3 = arnold_rhs(t3, kh);
   const T c23 = c2 + heading_cos(t3, hs), s23 = s2 + heading_sin(t3, hs);
-  const Vec3<T> k23{k2.x + k3.x, k2.y + k3.y, k2.z + k3.z};
-  const Trig3<T> t4 = trig3_stage(t1, u, h, k3, small);
-  const Vec3<T> k4 = arnold_rhs(t4, k);
+  const Vec3<T> K23{K2.x + K3.x, K2.y + K3.y, K2.z + K3.z};
+  const Trig3<T> t4 = trig3_stage<true>(t1, u, Vec3<T>{K3.x + K3.x, K3.y + K3.y, K3.z + K3.z}, small);
+  const Vec3<T> K4 = arnold_rhs(t4, kh);
   const T c14 = c1 + heading_cos(t4, hs), s14 = s1 + heading_sin(t4, hs);
 
-  // u + h/6 (k1 + 2 k2 + 2 k3 + k4), as fma(2, k2 + k3, k1 + k4).
-  const T sixth = h * lane::splat<T>(1.0 / 6.0);
+  // u + h/6 (k1 + 2 k2 + 2 k3 + k4) = u + (K1 + 2 K2 + 2 K3 + K4) / 3.
+  const T third = lane::splat<T>(1.0 / 3.0);
   Rk4Step<T> out;
-  out.u.x = wrap_pi(fma(sixth, fma(two, k23.x, k1.x + k4.x), u.x));
-  out.u.y = wrap_pi(fma(sixth, fma(two, k23.y, k1.y + k4.y), u.y));
-  out.u.z = wrap_pi(fma(sixth, fma(two, k23.z, k1.z + k4.z), u.z));
+  out.u.x = wrap_pi(fma(third, fma(two, K23.x, K1.x + K4.x), u.x));
+  out.u.y = wrap_pi(fma(third, fma(two, K23.y, K1.y + K4.y), u.y));
+  out.u.z = wrap_pi(fma(third, fma(two, K23.z, K1.z + K4.z), u.z));
   const T pos6 = h_pos * lane::splat<T>(1.0 / 6.0);
   out.dX = pos6 * fma(two, c23, c14);
   out.dY = pos6 * fma(two, s23, s14);
