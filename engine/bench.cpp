@@ -47,7 +47,7 @@ Environment empty_map() {
 BenchReport::Width measure_width(SimdTarget target, double seconds) {
   const Environment env = empty_map();
   // Fewer runs for the slow portable width, so that one pass stays short.
-  const auto runs = workload(target == SimdTarget::scalar ? 16 : 128);
+  const auto runs = workload(target == SimdTarget::scalar ? 16 : 1024);
   std::vector<BatchItem> items;
   for (const RunParams& p : runs) items.push_back({&p, &env});
   std::vector<RunResult> results(runs.size());

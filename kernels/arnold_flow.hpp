@@ -19,6 +19,10 @@ template <class T>
 struct Vec3 {
   T x, y, z;
 };
+template <class T>
+inline Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <class T>
+inline Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 
 // Sines and cosines of the three Arnold coordinates: the right-hand side and the
 // heading both come from these, so each RK4 stage needs exactly three sincos.
@@ -48,15 +52,17 @@ inline Vec3<T> arnold_rhs(const Vec3<T>& u, const ArnoldCoeffs<T>& k) {
   return arnold_rhs(trig3(u), k);
 }
 
-// Stages 2-4 of an RK4 step are the base state shifted by d = (h/2) k or h k.
-// When every such shift is small, their sines and cosines come from the base
-// state's by angle addition and short Taylor polynomials of d: about a third
-// of the work of a full sincos. The mode holds when
-// h * max(|A|+|C|, |B|+|A|, |C|+|B|) <= small_shift (|k| is bounded by those
-// sums), so stages 2 and 3 shift by at most small_shift / 2 and stage 4 by at
-// most small_shift; each gets the shortest polynomial exact to below 1e-18 at
-// its bound. A run's mode is a function of its parameters only, so every
-// width computes a lane alike.
+// Stages 2-4 of an RK4 step are the base state u shifted by K1, K2 and 2 K3
+// (K = (h/2) k, see rk4_step). When the shifts are small, their sines and
+// cosines come by angle addition and short Taylor polynomials instead of
+// full sincos, each stage from the previous one: stage 2 = stage 1 + K1,
+// stage 3 = stage 2 + (K2 - K1), stage 4 = stage 3 + (2 K3 - K2). The mode
+// holds when h M <= small_shift, M = max(|A|+|C|, |B|+|A|, |C|+|B|); as M
+// bounds |k| and is a Lipschitz constant of k in the max norm, then
+//   |K1| <= hM/2 <= 0.1,  |K2 - K1| <= (hM/2) |K1| <= 0.01,
+//   |K3 - K2| <= (hM/2) |K2 - K1| <= 0.001,  |2 K3 - K2| <= 0.101,
+// so two polynomial lengths serve (ShiftForm). A run's mode is a function of
+// its parameters only, so every width computes a lane alike.
 inline constexpr double small_shift = 0.2;
 
 inline bool small_shift_mode(double h, double A, double B, double C) {
@@ -64,48 +70,52 @@ inline bool small_shift_mode(double h, double A, double B, double C) {
   return h * std::max({a + c, b + a, c + b}) <= small_shift;
 }
 
+// Polynomial lengths, each exact to below 1e-18 up to its bound:
+// tiny |d| <= 0.01 (Taylor to d^5 / d^6), short |d| <= 0.11 (to d^9 / d^10).
+enum class ShiftForm { tiny, short_ };
+inline constexpr double shift_bound(ShiftForm f) { return f == ShiftForm::tiny ? 0.01 : 0.11; }
+
 // sin(u + d), cos(u + d) from su = sin u, cu = cos u, as
 // su + (su (cos d - 1) + cu sin d): the correction is formed apart from the
-// leading term, which keeps the error near 1 ulp. Long: |d| <= 0.2 (Taylor to
-// d^11 / d^12, remainder < 2e-19), otherwise |d| <= 0.1 (to d^9 / d^10,
-// remainder < 3e-19).
-template <bool Long, class T>
+// leading term, which keeps the error near 1 ulp.
+template <ShiftForm F, class T>
 inline void sincos_shift(T su, T cu, T d, T& s, T& c) {
   using lane::fma;
   using lane::splat;
   const T d2 = d * d;
-  T ps = splat<T>(1.0 / 362880.0);
-  if constexpr (Long) ps = fma(d2, splat<T>(-1.0 / 39916800.0), ps);
-  ps = fma(ps, d2, splat<T>(-1.0 / 5040.0));
-  ps = fma(ps, d2, splat<T>(1.0 / 120.0));
-  ps = fma(ps, d2, splat<T>(-1.0 / 6.0));
-  const T sd = fma(d * d2, ps, d);  // sin d
-  T pc = splat<T>(-1.0 / 3628800.0);
-  if constexpr (Long) pc = fma(d2, splat<T>(1.0 / 479001600.0), pc);
-  pc = fma(pc, d2, splat<T>(1.0 / 40320.0));
-  pc = fma(pc, d2, splat<T>(-1.0 / 720.0));
-  pc = fma(pc, d2, splat<T>(1.0 / 24.0));
-  pc = fma(pc, d2, splat<T>(-0.5));
-  const T cm = d2 * pc;  // cos d - 1
+  T ps, pc;
+  if constexpr (F == ShiftForm::tiny) {
+    ps = fma(d2, splat<T>(1.0 / 120.0), splat<T>(-1.0 / 6.0));
+    pc = fma(d2, splat<T>(-1.0 / 720.0), splat<T>(1.0 / 24.0));
+  } else {
+    ps = fma(d2, splat<T>(1.0 / 362880.0), splat<T>(-1.0 / 5040.0));
+    ps = fma(ps, d2, splat<T>(1.0 / 120.0));
+    ps = fma(ps, d2, splat<T>(-1.0 / 6.0));
+    pc = fma(d2, splat<T>(-1.0 / 3628800.0), splat<T>(1.0 / 40320.0));
+    pc = fma(pc, d2, splat<T>(-1.0 / 720.0));
+    pc = fma(pc, d2, splat<T>(1.0 / 24.0));
+  }
+  const T sd = fma(d * d2, ps, d);             // sin d
+  const T cm = d2 * fma(pc, d2, splat<T>(-0.5));  // cos d - 1
   s = fma(su, cm, fma(cu, sd, su));
   c = fma(cu, cm, fma(-su, sd, cu));
 }
 
-// Trig of u + d, by shift when `small` holds for every lane, by full sincos
-// when for none, and lane by lane otherwise.
-template <bool Long, class T, class M>
-inline Trig3<T> trig3_stage(const Trig3<T>& base, const Vec3<T>& u, const Vec3<T>& d, M small) {
+// Trig of the stage point p = (base point) + d: by shifting `base` when
+// `small` holds for every lane, by full sincos of p when for none, and lane
+// by lane otherwise.
+template <ShiftForm F, class T, class M>
+inline Trig3<T> trig3_stage(const Trig3<T>& base, const Vec3<T>& d, const Vec3<T>& p, M small) {
   auto shifted = [&] {
     Trig3<T> t;
-    sincos_shift<Long>(base.sx, base.cx, d.x, t.sx, t.cx);
-    sincos_shift<Long>(base.sy, base.cy, d.y, t.sy, t.cy);
-    sincos_shift<Long>(base.sz, base.cz, d.z, t.sz, t.cz);
+    sincos_shift<F>(base.sx, base.cx, d.x, t.sx, t.cx);
+    sincos_shift<F>(base.sy, base.cy, d.y, t.sy, t.cy);
+    sincos_shift<F>(base.sz, base.cz, d.z, t.sz, t.cz);
     return t;
   };
-  auto full = [&] { return trig3(Vec3<T>{u.x + d.x, u.y + d.y, u.z + d.z}); };
   if (lane::all(small)) return shifted();
-  if (lane::none(small)) return full();
-  const Trig3<T> a = shifted(), b = full();
+  if (lane::none(small)) return trig3(p);
+  const Trig3<T> a = shifted(), b = trig3(p);
   return {lane::select(small, a.sx, b.sx), lane::select(small, a.cx, b.cx), lane::select(small, a.sy, b.sy),
           lane::select(small, a.cy, b.cy), lane::select(small, a.sz, b.sz), lane::select(small, a.cz, b.cz)};
 }
@@ -147,8 +157,8 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const Hea
   const T half = h * lane::splat<T>(0.5);
   const T two = lane::splat<T>(2.0);
   // The stage derivatives are taken in units of h/2 (K = (h/2) k, from the
-  // coefficients scaled once), so stages 2 and 3 shift by K1, K2 and stage 4
-  // by K3 + K3 (exact) with no further products. Each stage's trig is reduced
+  // coefficients scaled once), so stages 2, 3 and 4 sit at u + K1, u + K2 and
+  // u + 2 K3 (doubling is exact) with no further products. Each stage's trig is reduced
   // at once to what later stages need (its K and heading), and stages 1+4 and
   // 2+3 are summed as they come: this keeps few vectors live. The operations
   // are the same in every width.
@@ -156,14 +166,15 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const Hea
   const Trig3<T> t1 = trig3(u);
   const Vec3<T> K1 = arnold_rhs(t1, kh);
   const T c1 = heading_cos(t1, hs), s1 = heading_sin(t1, hs);
-  const Trig3<T> t2 = trig3_stage<false>(t1, u, K1, small);
+  const Trig3<T> t2 = trig3_stage<ShiftForm::short_>(t1, K1, u + K1, small);
   const Vec3<T> K2 = arnold_rhs(t2, kh);
   const T c2 = heading_cos(t2, hs), s2 = heading_sin(t2, hs);
-  const Trig3<T> t3 = trig3_stage<false>(t1, u, K2, small);
+  const Trig3<T> t3 = trig3_stage<ShiftForm::tiny>(t2, K2 - K1, u + K2, small);
   const Vec3<T> K3 = arnold_rhs(t3, kh);
   const T c23 = c2 + heading_cos(t3, hs), s23 = s2 + heading_sin(t3, hs);
-  const Vec3<T> K23{K2.x + K3.x, K2.y + K3.y, K2.z + K3.z};
-  const Trig3<T> t4 = trig3_stage<true>(t1, u, Vec3<T>{K3.x + K3.x, K3.y + K3.y, K3.z + K3.z}, small);
+  const Vec3<T> K23 = K2 + K3;
+  const Vec3<T> K33 = K3 + K3;
+  const Trig3<T> t4 = trig3_stage<ShiftForm::short_>(t3, K33 - K2, u + K33, small);
   const Vec3<T> K4 = arnold_rhs(t4, kh);
   const T c14 = c1 + heading_cos(t4, hs), s14 = s1 + heading_sin(t4, hs);
 

@@ -19,7 +19,7 @@ struct LaneArrays {
   // Fast path (mirror boundary, no obstacles): the integrator also moves the
   // robot (with Eq. 7's single reflections) and advances the clock when the
   // step stays in its cell and triggers no end or segment check — the same
-  // operations the scalar PlannerRun would do. Any other step sets `flag` and is left to the
+  // operations the scalar PlannerRun would do. Any other step sets its bit in `flagged` and is left to the
   // sink, which redoes it in full.
   alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
   alignas(64) double budget[max_lanes], stuck_time[max_lanes], t_last_new[max_lanes];
@@ -28,7 +28,7 @@ struct LaneArrays {
   alignas(64) double inv_cell[max_lanes], max_i[max_lanes], max_j[max_lanes];
   alignas(64) double cell_i[max_lanes], cell_j[max_lanes];
   alignas(64) double fast[max_lanes];  // 1: the fast path applies to this lane
-  alignas(64) double flag[max_lanes];  // out: 1 when the sink must handle the step
+  unsigned flagged = 0;  // out: bit l set when the sink must handle lane l's step
 };
 
 // Consumes each computed step (boundaries, grid, decisions, refill) and

@@ -1,5 +1,6 @@
 #include "lane_driver.hpp"
 
+#include <bit>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -43,31 +44,30 @@ class LaneDriver final : public LaneSink {
   LaneDriver(RunQueue& queue, int lanes) : q_(queue), items_(queue.items), results_(queue.results), slots_(std::size_t(lanes)) {
     a_.lanes = lanes;
     for (int l = 0; l < lanes; ++l) load(l);
+    active_ = any_active();
   }
 
+  // Visits only the lanes the integrator flagged (it applied every other
+  // lane's step itself); idle lanes stay flagged and are skipped here.
   bool post_step() override {
-    bool any = false;
-    for (int l = 0; l < a_.lanes; ++l) {
+    bool refilled = false;
+    for (unsigned m = a_.flagged; m != 0; m &= m - 1) {
+      const int l = std::countr_zero(m);
       Slot& s = slots_[std::size_t(l)];
       if (!s.run) continue;
-      if (a_.flag[l] == 0.0) {  // the integrator already applied this step
-        any = true;
-        continue;
-      }
       try {
-        if (s.run->lane_step(a_, l)) {
-          complete(s);
-          load(l);
-        }
+        if (!s.run->lane_step(a_, l)) continue;
+        complete(s);
       } catch (const std::exception& e) {
         record_error(results_[s.item], e.what());
         s.run.reset();
         count(results_[s.item]);
-        load(l);
       }
-      any = any || s.run != nullptr;
+      load(l);
+      refilled = true;
     }
-    return any;
+    if (refilled) active_ = any_active();
+    return active_;
   }
 
   LaneArrays& arrays() { return a_; }
@@ -154,6 +154,7 @@ class LaneDriver final : public LaneSink {
   RunResult* results_;
   std::vector<Slot> slots_;
   LaneArrays a_;
+  bool active_ = false;  // some lane has a run
 };
 
 }  // namespace

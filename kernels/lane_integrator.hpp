@@ -23,8 +23,9 @@ inline void lane_store(double* p, V v) {
 // The step's common case, vectorised (see LaneArrays). Mirrors
 // RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
 // operation for operation, so a lane's result never depends on the path.
+// Returns the lanes it applied the step to, one bit each (lane o in bit 0).
 template <class V>
-inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
+inline unsigned fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   const V zero = lane::splat<V>(0.0), one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
   // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a step
@@ -55,7 +56,7 @@ inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   lane_store(a.t + o, lane::select(quiet, t1, t));
   lane_store(a.seg_step + o, lane::select(quiet, seg, seg - one));
   lane_store(a.steps + o, lane_load<V>(a.steps + o) + lane::select(quiet, one, zero));
-  lane_store(a.flag + o, lane::select(quiet, zero, one));
+  return lane::bits(quiet);
 }
 
 // flatten: the step and the fast path inline into one loop body, so the
@@ -63,7 +64,9 @@ inline void fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
 template <class V, int N>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
+  const unsigned all_lanes = (1u << a.lanes) - 1u;
   do {
+    unsigned quiet = 0;
     for (int g = 0; g < a.lanes; g += w * N) {
       Rk4Step<V> s[N];
       for (int k = 0; k < N; ++k) {
@@ -82,9 +85,10 @@ template <class V, int N>
         lane_store(a.z + o, s[k].u.z);
         lane_store(a.dX + o, s[k].dX);
         lane_store(a.dY + o, s[k].dY);
-        fast_path<V>(a, o, s[k]);
+        quiet |= fast_path<V>(a, o, s[k]) << o;
       }
     }
+    a.flagged = ~quiet & all_lanes;
   } while (sink.post_step());
 }
 

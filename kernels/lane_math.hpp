@@ -38,6 +38,8 @@ inline double select(mask1 m, double a, double b) { return m ? a : b; }
 inline double trunc(double x) { return std::trunc(x); }
 inline bool all(mask1 m) { return m; }
 inline bool none(mask1 m) { return !m; }
+// One bit per lane, lane 0 in bit 0.
+inline unsigned bits(mask1 m) { return m ? 1u : 0u; }
 
 inline int1 to_int(double x) { return static_cast<int1>(x); }
 inline double abs(double x) { return std::fabs(x); }

@@ -27,7 +27,7 @@ class PlannerRun {
 
   // Step-driven use by the lane integrators, which compute fixed-step RK4
   // steps of many runs at once (LaneArrays): start(), write_lane(), then for
-  // every step the integrator flags (see LaneArrays::flag) lane_step(), until
+  // every step the integrator flags (see LaneArrays::flagged) lane_step(), until
   // it returns true (the run ended); then finish().
   void start();
   void write_lane(LaneArrays& a, int l) const;

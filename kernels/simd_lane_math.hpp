@@ -36,6 +36,7 @@ inline void quadrant(v4d j, v4d sin_r, v4d cos_r, v4d& s, v4d& c) {
 }
 inline bool all(v4l m) { return _mm256_movemask_pd(__m256d(m)) == 0xF; }
 inline bool none(v4l m) { return _mm256_movemask_pd(__m256d(m)) == 0; }
+inline unsigned bits(v4l m) { return unsigned(_mm256_movemask_pd(__m256d(m))); }
 inline v4d trunc(v4d x) { return _mm256_round_pd(x, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC); }
 #endif
 
@@ -65,6 +66,7 @@ inline void quadrant(v8d j, v8d sin_r, v8d cos_r, v8d& s, v8d& c) {
 }
 inline bool all(v8l m) { return _mm512_movepi64_mask(__m512i(m)) == 0xFF; }
 inline bool none(v8l m) { return _mm512_movepi64_mask(__m512i(m)) == 0; }
+inline unsigned bits(v8l m) { return unsigned(_mm512_movepi64_mask(__m512i(m))); }
 inline v8d trunc(v8d x) { return _mm512_mask_roundscale_pd(x, 0xFF, x, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC); }
 #endif
 

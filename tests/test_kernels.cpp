@@ -78,17 +78,18 @@ TEST(ArnoldRhs, IsTheAbcFlow) {
 }
 
 namespace {
-// Largest error of sincos_shift<Long> over random angles and shifts up to
+// Largest error of sincos_shift<F> over random angles and shifts up to
 // `bound`, against long double sinl/cosl of the exact sum.
-template <bool Long>
-double max_shift_error(double bound) {
+template <ShiftForm F>
+double max_shift_error() {
+  const double bound = shift_bound(F);
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi), shift(-bound, bound);
   double worst = 0;
   for (int i = 0; i < 100000; ++i) {
     const double a = angle(rng), d = i < 2 ? (i ? -bound : bound) : shift(rng);
     double s, c;
-    sincos_shift<Long>(std::sin(a), std::cos(a), d, s, c);
+    sincos_shift<F>(std::sin(a), std::cos(a), d, s, c);
     const long double x = (long double)a + d;
     worst = std::max({worst, double(std::fabs(s - sinl(x))), double(std::fabs(c - cosl(x)))});
   }
@@ -96,13 +97,9 @@ double max_shift_error(double bound) {
 }
 }  // namespace
 
-TEST(SincosShift, ShortFormIsExactToRoundingForShiftsUpToHalfTheBound) {
-  EXPECT_LT(max_shift_error<false>(small_shift / 2), 3.5e-16);
-}
+TEST(SincosShift, TinyFormIsExactToRoundingUpToItsBound) { EXPECT_LT(max_shift_error<ShiftForm::tiny>(), 3.5e-16); }
 
-TEST(SincosShift, LongFormIsExactToRoundingForShiftsUpToTheBound) {
-  EXPECT_LT(max_shift_error<true>(small_shift), 3.5e-16);
-}
+TEST(SincosShift, ShortFormIsExactToRoundingUpToItsBound) { EXPECT_LT(max_shift_error<ShiftForm::short_>(), 3.5e-16); }
 
 TEST(SincosShift, ModeFollowsTheBoundOnEveryShift) {
   EXPECT_TRUE(small_shift_mode(0.1, 0.5, 0.25, 0.25));   // paper: 0.075
