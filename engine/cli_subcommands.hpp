@@ -12,4 +12,6 @@ void add_merge_command(CLI::App& app, std::function<int()>& action);
 void add_compare_command(CLI::App& app, std::function<int()>& action);
 void add_slurm_commands(CLI::App& app, std::function<int()>& action);
 void add_bench_command(CLI::App& app, std::function<int()>& action);
+void add_table_command(CLI::App& app, std::function<int()>& action);
+void add_figure_command(CLI::App& app, std::function<int()>& action);
 }  // namespace chaosweep

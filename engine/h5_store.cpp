@@ -252,6 +252,22 @@ std::vector<std::string> column_names(const std::string& path) {
   return names;
 }
 
+std::vector<std::pair<std::string, Column::Type>> column_types(const std::string& path) {
+  const RunsDataset runs(path);
+  Handle type{H5Dget_type(runs.dset.id), H5Tclose};
+  std::vector<std::pair<std::string, Column::Type>> out;
+  for (int i = 0; i < H5Tget_nmembers(type.id); ++i) {
+    char* name = H5Tget_member_name(type.id, unsigned(i));
+    const H5T_class_t cls = H5Tget_member_class(type.id, unsigned(i));
+    const Column::Type t = cls == H5T_FLOAT     ? Column::Type::f64
+                           : cls == H5T_INTEGER ? Column::Type::i64
+                                                : Column::Type::text;
+    out.emplace_back(name, t);
+    H5free_memory(name);
+  }
+  return out;
+}
+
 std::string read_attribute(const std::string& path, const std::string& name) {
   Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
   if (file.id < 0) h5_fail("cannot open " + path);

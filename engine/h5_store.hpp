@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "result_columns.hpp"
 #include "run_tuple.hpp"
 
 namespace chaosweep {
@@ -53,5 +54,8 @@ std::vector<std::string> read_text_column(const std::string& path, const std::st
 std::string read_attribute(const std::string& path, const std::string& name);
 std::int64_t count_rows(const std::string& path);
 std::vector<std::string> column_names(const std::string& path);
+// Names and storage types of /runs' columns, in file order (floats as f64,
+// integers as i64, strings as text).
+std::vector<std::pair<std::string, Column::Type>> column_types(const std::string& path);
 
 }  // namespace chaosweep

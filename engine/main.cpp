@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   add_compare_command(app, action);
   add_slurm_commands(app, action);
   add_bench_command(app, action);
+  add_table_command(app, action);
+  add_figure_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,310 @@
+#include "figures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "grouping.hpp"
+#include "param_table.hpp"
+#include "replay.hpp"
+#include "tables.hpp"
+#include "text_table.hpp"
+#include "zones.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<double> distinct_sorted(const std::vector<double>& v, const std::vector<std::size_t>& rows) {
+  std::set<double> s;
+  for (std::size_t r : rows) s.insert(v[r]);
+  return {s.begin(), s.end()};
+}
+
+std::size_t index_of(const std::vector<double>& axis, double v) {
+  return std::size_t(std::lower_bound(axis.begin(), axis.end(), v) - axis.begin());
+}
+
+// The paper's tuple for Fig. 6 (seed 000): (A, B, C) = (0.5, 0.25, 0.25).
+std::vector<double> mark_or_default(const std::vector<double>& m) {
+  if (m.empty()) return {0.5, 0.25, 0.25};
+  if (m.size() != 3) throw AnalysisError("--mark: expected A,B,C (three numbers)");
+  return m;
+}
+
+std::string tuple_text(double a, double b, double c) {
+  return "(" + format_number(a) + ", " + format_number(b) + ", " + format_number(c) + ")";
+}
+
+// ---------------------------------------------------------------- heatmaps
+
+FigureOutput heatmap_figure(const ResultSet& rs, const std::string& xcol, const std::string& ycol,
+                            const std::string& stat, const std::string& title, std::optional<PlotMark> mark,
+                            const FigureOptions& opt, const std::string& path) {
+  const auto& xv = rs.num(xcol);
+  const auto& yv = rs.num(ycol);
+  const auto rows = all_rows(rs);
+  (void)group_statistic(rs, {}, stat);  // an unknown statistic fails before any work
+  HeatmapPlot p;
+  p.title = title;
+  p.xlabel = xcol;
+  p.ylabel = ycol;
+  p.zlabel = stat == "ok_rate" ? "ok rate" : stat == "runs" ? "runs" : stat + " CT (s)";
+  p.xs = distinct_sorted(xv, rows);
+  p.ys = distinct_sorted(yv, rows);
+  p.z.assign(p.xs.size() * p.ys.size(), nan);
+  TextTable csv;
+  csv.header = {xcol, ycol, stat == "ok_rate" || stat == "runs" ? stat : stat + "_ct", "runs", "ok"};
+  for (const Group& g : group_rows(rs, {xcol, ycol}, rows)) {
+    const double z = group_statistic(rs, g.rows, stat);
+    p.z[index_of(p.ys, g.key_num[1]) * p.xs.size() + index_of(p.xs, g.key_num[0])] = z;
+    csv.add_row({g.key[0], g.key[1], fmt_sig(z, 6), std::to_string(g.rows.size()),
+                 std::to_string(ok_rows(rs, g.rows).size())});
+  }
+  p.mark = std::move(mark);
+  FigureOutput out{path, csv_beside(path), {}};
+  csv.write_csv_file(out.csv);
+  render(p, path, opt.size);
+  return out;
+}
+
+FigureOutput fig6a(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
+  for (const char* c : {"A", "B", "C"}) (void)rs.num(c);
+  const auto m = mark_or_default(opt.mark);
+  return heatmap_figure(rs, "A", "C", "min", "Fig. 6a: minimum coverage time over B",
+                        PlotMark{m[0], m[2], "(A, C) = (" + format_number(m[0]) + ", " + format_number(m[2]) + ")"},
+                        opt, path);
+}
+
+// ------------------------------------------------------------------ fig6b
+
+FigureOutput fig6b(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
+  const auto m = mark_or_default(opt.mark);
+  for (const char* c : {"A", "B", "C"}) (void)rs.num(c);
+  double bound = opt.bound;
+  if (bound <= 0 && rs.has("max_time"))
+    for (double t : rs.num("max_time")) bound = std::max(bound, t);
+  if (!(bound > 0)) throw AnalysisError("--bound: give the time bound (the runs carry no max_time)");
+  // Each (A, B, C) tuple scored by its median CT (tables.hpp: tuple_score).
+  struct Tuple {
+    double a, b, c, ct;
+  };
+  std::vector<Tuple> tuples;
+  for (const Group& g : group_rows(rs, {"A", "B", "C"}, all_rows(rs)))
+    tuples.push_back({g.key_num[0], g.key_num[1], g.key_num[2], tuple_score(rs, g.rows)});
+  std::stable_sort(tuples.begin(), tuples.end(), [](const Tuple& x, const Tuple& y) { return x.ct < y.ct; });
+  const double n = double(tuples.size());
+  // The marked tuple, or the nearest on the grid (relative to each axis' span).
+  auto span = [&](auto get) {
+    double lo = 1e300, hi = -1e300;
+    for (const Tuple& t : tuples) lo = std::min(lo, get(t)), hi = std::max(hi, get(t));
+    return hi > lo ? hi - lo : 1.0;
+  };
+  const double sa = span([](const Tuple& t) { return t.a; }), sb = span([](const Tuple& t) { return t.b; }),
+               sc = span([](const Tuple& t) { return t.c; });
+  std::size_t best = 0;
+  double best_d = 1e300;
+  for (std::size_t i = 0; i < tuples.size(); ++i) {
+    const double d = std::hypot((tuples[i].a - m[0]) / sa, (tuples[i].b - m[1]) / sb, (tuples[i].c - m[2]) / sc);
+    if (d < best_d) best_d = d, best = i;
+  }
+  const Tuple& mk = tuples[best];
+  const bool exact = best_d < 1e-9;
+  // Share of tuples at least as fast as the marked one.
+  double within = 0;
+  for (const Tuple& t : tuples) within += t.ct <= mk.ct;
+
+  TextTable csv;
+  csv.header = {"rank", "A", "B", "C", "median_ct", "percent_of_tuples_within"};
+  LineSeries curve{"tuples", {0.0}, {0.0}};
+  for (std::size_t i = 0; i < tuples.size(); ++i) {
+    const Tuple& t = tuples[i];
+    const bool reached = t.ct <= bound;
+    const double pct = 100.0 * double(i + 1) / n;
+    csv.add_row({std::to_string(i + 1), format_number(t.a), format_number(t.b), format_number(t.c),
+                 std::isinf(t.ct) ? "-" : fmt_sig(t.ct, 6), reached ? fmt_fixed(pct, 3) : "-"});
+    if (reached) {  // a step: the share jumps at each tuple's CT
+      curve.x.push_back(t.ct);
+      curve.y.push_back(curve.y.back());
+      curve.x.push_back(t.ct);
+      curve.y.push_back(pct);
+    }
+  }
+  curve.x.push_back(bound);
+  curve.y.push_back(curve.y.back());
+  FigureOutput out{path, csv_beside(path), {}};
+  const std::string who = (exact ? "tuple " : "nearest grid tuple to " + tuple_text(m[0], m[1], m[2]) + ": ") +
+                          tuple_text(mk.a, mk.b, mk.c);
+  if (std::isinf(mk.ct)) {
+    out.lines.push_back(who + " did not reach the target within its runs' budget");
+  } else {
+    out.lines.push_back(who + ": median CT " + fmt_sig(mk.ct, 6) + " s; " + fmt_fixed(100.0 * within / n, 1) +
+                        "% of " + std::to_string(tuples.size()) + " tuples are at least as fast (rank " +
+                        std::to_string(best + 1) + ")");
+  }
+  LinePlot p;
+  p.title = "Fig. 6b: tuples reaching the target within a time bound";
+  p.xlabel = "time bound (s)";
+  p.ylabel = "tuples (%)";
+  p.series.push_back(std::move(curve));
+  p.y_range = {0.0, 100.0};
+  if (!std::isinf(mk.ct))
+    p.mark = PlotMark{mk.ct, 100.0 * within / n,
+                      tuple_text(mk.a, mk.b, mk.c) + ": " + fmt_fixed(100.0 * within / n, 1) + "%"};
+  csv.write_csv_file(out.csv);
+  render(p, path, opt.size);
+  return out;
+}
+
+// ------------------------------------------------------ trajectory, coverage
+
+std::vector<std::int64_t> chosen_runs(const ResultSet& rs, const FigureOptions& opt, std::size_t max_default) {
+  if (!opt.runs.empty()) return opt.runs;
+  const auto& ids = rs.num("run_id");
+  std::vector<std::int64_t> out;
+  if (!opt.by.empty()) {
+    // One run per group: the one whose CT is the group's median among ok runs.
+    for (const Group& g : group_rows(rs, {opt.by}, all_rows(rs))) {
+      std::vector<std::size_t> ok = ok_rows(rs, g.rows);
+      if (ok.empty()) ok = g.rows;
+      std::stable_sort(ok.begin(), ok.end(), [&](std::size_t a, std::size_t b) {
+        return rs.num("coverage_time")[a] < rs.num("coverage_time")[b];
+      });
+      out.push_back(std::int64_t(ids[ok[(ok.size() - 1) / 2]]));
+    }
+    return out;
+  }
+  for (std::size_t r = 0; r < rs.rows() && out.size() < max_default; ++r) out.push_back(std::int64_t(ids[r]));
+  return out;
+}
+
+std::string run_name(const ResultSet& rs, std::size_t r, const std::string& by) {
+  std::string s = "run " + rs.cell("run_id", r);
+  if (!by.empty()) return s + " (" + by + " " + rs.cell(by, r) + ")";
+  if (rs.has("label") && !rs.text("label")[r].empty()) s += ", " + rs.text("label")[r];
+  if (rs.has("variant")) s += ", " + rs.text("variant")[r];
+  return s;
+}
+
+FigureOutput trajectory(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
+  const auto ids = chosen_runs(rs, opt, 1);
+  if (ids.size() != 1) throw AnalysisError("trajectory: give one run with --run ID");
+  const std::size_t r = row_of_run(rs, ids[0]);
+  const Replay rp = replay_row(rs, r);
+  FigureOutput out{path, csv_beside(path), {}};
+  if (!rp.mismatch.empty()) out.lines.push_back("warning: the replay differs from the stored run: " + rp.mismatch);
+  const Environment& env = *rp.tuple.env;
+  const RunParams& p = rp.tuple.params;
+  MapPlot m;
+  m.title = "Run " + rs.cell("run_id", r) + ": " + rs.text("variant")[r] + ", " + to_string(rp.result.status) +
+            (std::isnan(rp.result.coverage_time) ? "" : ", CT " + fmt_sig(rp.result.coverage_time, 6) + " s") +
+            ", coverage " + fmt_fixed(100.0 * rp.grid.coverage(), 1) + "%";
+  m.lx = env.lx, m.ly = env.ly;
+  m.cell = rp.grid.cell_size();
+  m.nx = rp.grid.nx(), m.ny = rp.grid.ny();
+  for (int j = 0; j < m.ny; ++j)
+    for (int i = 0; i < m.nx; ++i) m.covered.push_back(rp.grid.at(i, j) == CoverageGrid::visited);
+  for (const Rect& o : env.obstacles) m.obstacles.push_back({o.x0, o.y0, o.x1, o.y1});
+  if (p.map_zoning) {
+    const Zones zones(env, rp.grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo);
+    for (const ZoneInfo& z : zones.snapshot(rp.grid)) m.zone_midpoints.emplace_back(z.mid_x, z.mid_y);
+  }
+  // Paths split where the kind changes; each piece keeps its first point's
+  // predecessor so the pieces join up. Long runs are thinned for drawing
+  // only (at most ~200k points); the CSV keeps every point.
+  const std::size_t stride = std::max<std::size_t>(1, rp.points.size() / 200000);
+  TextTable csv;
+  csv.header = {"t", "x", "y", "kind", "ds_index", "visited_cells"};
+  SegmentKind kind = SegmentKind::start;
+  for (std::size_t i = 0; i < rp.points.size(); ++i) {
+    const TracePoint& q = rp.points[i];
+    csv.add_row({format_number(q.t), format_number(q.x), format_number(q.y), to_string(q.kind),
+                 std::to_string(q.ds_index), std::to_string(rp.visited[i])});
+    if (q.kind == SegmentKind::start) continue;
+    auto& paths = q.kind == SegmentKind::transit ? m.transit_paths : m.arnold_paths;
+    if (q.kind != kind || paths.empty()) {
+      paths.emplace_back();
+      if (i > 0) paths.back().emplace_back(rp.points[i - 1].x, rp.points[i - 1].y);
+      kind = q.kind;
+    }
+    if (i % stride == 0 || i + 1 == rp.points.size() || q.kind == SegmentKind::transit) paths.back().emplace_back(q.x, q.y);
+  }
+  if (!rp.points.empty()) {
+    m.start = {rp.points.front().x, rp.points.front().y};
+    m.end = {rp.points.back().x, rp.points.back().y};
+  }
+  csv.write_csv_file(out.csv);
+  render(m, path, opt.size);
+  return out;
+}
+
+FigureOutput coverage(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
+  const auto ids = chosen_runs(rs, opt, 5);
+  if (ids.empty()) throw AnalysisError("coverage: no runs chosen");
+  if (ids.size() > 12) throw AnalysisError("coverage: at most 12 runs in one figure (" + std::to_string(ids.size()) + " chosen)");
+  FigureOutput out{path, csv_beside(path), {}};
+  LinePlot p;
+  p.title = "Coverage over time";
+  p.xlabel = "t (s)";
+  p.ylabel = "coverage (%)";
+  p.y_range = {0.0, 100.0};
+  TextTable csv;
+  csv.header = {"run_id", "t", "coverage_percent"};
+  for (std::int64_t id : ids) {
+    const std::size_t r = row_of_run(rs, id);
+    const Replay rp = replay_row(rs, r);
+    if (!rp.mismatch.empty()) out.lines.push_back("warning: run " + std::to_string(id) + " replays differently: " + rp.mismatch);
+    LineSeries s{run_name(rs, r, opt.by), {}, {}};
+    const double free = std::max(1, rp.grid.free_cells());
+    int last = -1;
+    // A step curve: one point where the visited count changes, and the end.
+    for (std::size_t i = 0; i < rp.points.size(); ++i) {
+      if (rp.visited[i] == last && i + 1 != rp.points.size()) continue;
+      last = rp.visited[i];
+      const double pct = 100.0 * double(rp.visited[i]) / free;
+      s.x.push_back(rp.points[i].t);
+      s.y.push_back(pct);
+      csv.add_row({std::to_string(id), format_number(rp.points[i].t), fmt_fixed(pct, 4)});
+    }
+    p.series.push_back(std::move(s));
+  }
+  csv.write_csv_file(out.csv);
+  render(p, path, opt.size);
+  return out;
+}
+
+}  // namespace
+
+std::string csv_beside(const std::string& image_path) {
+  return std::filesystem::path(image_path).replace_extension(".csv").string();
+}
+
+const std::vector<std::string>& figure_names() {
+  static const std::vector<std::string> names{"fig6a", "fig6b", "heatmap", "trajectory", "coverage"};
+  return names;
+}
+
+FigureOutput make_figure(const std::string& name, const ResultSet& rs, const FigureOptions& opt,
+                         const std::string& image_path) {
+  check_image_path(image_path);
+  if (rs.rows() == 0) throw AnalysisError("the result files hold no runs");
+  if (name == "fig6a") return fig6a(rs, opt, image_path);
+  if (name == "fig6b") return fig6b(rs, opt, image_path);
+  if (name == "heatmap") {
+    if (opt.x.empty() || opt.y.empty()) throw AnalysisError("heatmap: give the two axes with --x COLUMN --y COLUMN");
+    return heatmap_figure(rs, opt.x, opt.y, opt.stat, opt.stat + " of coverage time over " + opt.x + " and " + opt.y,
+                          std::nullopt, opt, image_path);
+  }
+  if (name == "trajectory") return trajectory(rs, opt, image_path);
+  if (name == "coverage") return coverage(rs, opt, image_path);
+  std::string list;
+  for (const std::string& n : figure_names()) list += (list.empty() ? "" : ", ") + n;
+  throw AnalysisError("unknown figure '" + name + "' (allowed: " + list + ")");
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,42 @@
+#pragma once
+// The figures `chaosweep figure NAME` draws. Each computes its data from
+// result rows, writes it as CSV beside the image (same name, .csv) and
+// renders the image with MathGL (plot.hpp).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plot.hpp"
+#include "result_set.hpp"
+
+namespace chaosweep {
+
+struct FigureOptions {
+  std::string x, y;                  // heatmap: the two axes
+  std::string stat = "min";          // heatmap: statistic (grouping.hpp)
+  std::vector<double> mark;          // fig6a/fig6b: the marked (A, B, C)
+  double bound = 0;                  // fig6b: time bound, s (0: the runs' max_time)
+  std::vector<std::int64_t> runs;    // trajectory, coverage: run ids
+  std::string by;                    // coverage: one run (the median) per value of this column
+  ImageSize size;
+};
+
+struct FigureOutput {
+  std::string image, csv;
+  std::vector<std::string> lines;  // findings to print (e.g. the marked tuple's percentile)
+};
+
+// fig6a: minimum CT over B as a colour map over (A, C), the marked tuple's (A, C) shown.
+// fig6b: share of (A, B, C) tuples reaching the target within each time bound,
+//        the marked tuple's CT and percentile shown.
+// heatmap: a statistic of CT (or ok rate, runs) over two swept axes.
+// trajectory: one run's path over its map, from a replay of its parameters.
+// coverage: coverage vs time for several runs.
+FigureOutput make_figure(const std::string& name, const ResultSet& rs, const FigureOptions& opt,
+                         const std::string& image_path);
+const std::vector<std::string>& figure_names();
+
+// The CSV path written beside an image: the same path with .csv.
+std::string csv_beside(const std::string& image_path);
+
+}  // namespace chaosweep

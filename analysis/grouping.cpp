@@ -1,0 +1,89 @@
+#include "grouping.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace chaosweep {
+
+std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string>& keys,
+                              const std::vector<std::size_t>& rows) {
+  for (const std::string& k : keys)
+    if (!rs.has(k)) (void)rs.num(k);  // throws, naming the column
+  // Ordering key: per column, a number or a string.
+  using Part = std::pair<double, std::string>;
+  std::map<std::vector<Part>, Group> by;
+  for (std::size_t r : rows) {
+    std::vector<Part> order;
+    for (const std::string& k : keys) {
+      if (rs.is_numeric(k)) order.emplace_back(rs.num(k)[r], "");
+      else order.emplace_back(0.0, rs.text(k)[r]);
+    }
+    auto [it, fresh] = by.try_emplace(std::move(order));
+    Group& g = it->second;
+    if (fresh) {
+      for (const std::string& k : keys) {
+        g.key.push_back(rs.cell(k, r));
+        g.key_num.push_back(rs.is_numeric(k) ? rs.num(k)[r] : std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+    g.rows.push_back(r);
+  }
+  std::vector<Group> out;
+  for (auto& [k, g] : by) out.push_back(std::move(g));
+  return out;
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const double pos = q * double(v.size() - 1);
+  const auto lo = std::size_t(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - double(lo)) * (v[hi] - v[lo]);
+}
+
+const std::vector<std::string>& statistic_names() {
+  static const std::vector<std::string> names{"min", "q1", "median", "mean", "q3", "max", "ok_rate", "runs"};
+  return names;
+}
+
+double group_statistic(const ResultSet& rs, const std::vector<std::size_t>& rows, const std::string& stat,
+                       const std::string& column) {
+  if (stat == "runs") return double(rows.size());
+  const std::vector<std::size_t> ok = ok_rows(rs, rows);
+  if (stat == "ok_rate") return rows.empty() ? std::numeric_limits<double>::quiet_NaN() : double(ok.size()) / double(rows.size());
+  std::vector<double> v;
+  for (std::size_t r : ok) v.push_back(rs.num(column)[r]);
+  if (stat == "min") return quantile(v, 0.0);
+  if (stat == "q1") return quantile(v, 0.25);
+  if (stat == "median") return quantile(v, 0.5);
+  if (stat == "q3") return quantile(v, 0.75);
+  if (stat == "max") return quantile(v, 1.0);
+  if (stat == "mean") {
+    if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+    double s = 0;
+    for (double x : v) s += x;
+    return s / double(v.size());
+  }
+  std::string list;
+  for (const std::string& n : statistic_names()) list += (list.empty() ? "" : ", ") + n;
+  throw AnalysisError("unknown statistic '" + stat + "' (allowed: " + list + ")");
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t b = 0;
+  while (b <= s.size()) {
+    const std::size_t e = std::min(s.find(',', b), s.size());
+    std::string item = s.substr(b, e - b);
+    while (!item.empty() && item.front() == ' ') item.erase(item.begin());
+    while (!item.empty() && item.back() == ' ') item.pop_back();
+    if (!item.empty()) out.push_back(item);
+    b = e + 1;
+  }
+  return out;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,52 @@
+#pragma once
+// Result rows loaded from one or more HDF5 result files into columns: the
+// input of every table and figure. Reads files only, never runs anything.
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace chaosweep {
+
+// Bad analysis input (a missing file or column, an empty selection, an
+// unknown table/figure name): the message names the offending item.
+struct AnalysisError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class ResultSet {
+ public:
+  // Loads /runs of every file, in order. Columns present in every file are
+  // kept (a merged or older file may carry fewer). Throws AnalysisError
+  // naming the file when one cannot be read.
+  static ResultSet load(const std::vector<std::string>& paths);
+  // For tests and tools: columns given directly (each of the same length).
+  static ResultSet from_columns(std::map<std::string, std::vector<double>> numeric,
+                                std::map<std::string, std::vector<std::string>> text);
+
+  std::size_t rows() const { return rows_; }
+  const std::vector<std::string>& sources() const { return sources_; }
+  bool has(const std::string& name) const { return num_.count(name) || text_.count(name); }
+  bool is_numeric(const std::string& name) const { return num_.count(name) > 0; }
+  // Numeric column (integers converted to double; exact up to 2^53). Throws
+  // AnalysisError naming the column, and listing the available ones.
+  const std::vector<double>& num(const std::string& name) const;
+  const std::vector<std::string>& text(const std::string& name) const;
+  // Any column's value as text (numbers in the shortest round-trip form).
+  std::string cell(const std::string& name, std::size_t row) const;
+  std::vector<std::string> names() const;
+
+ private:
+  [[noreturn]] void missing(const std::string& name, const char* kind) const;
+  std::size_t rows_ = 0;
+  std::vector<std::string> sources_;
+  std::map<std::string, std::vector<double>> num_;
+  std::map<std::string, std::vector<std::string>> text_;
+};
+
+// Row indices where `status` is "ok" (runs that reached the coverage target).
+std::vector<std::size_t> ok_rows(const ResultSet& rs, const std::vector<std::size_t>& rows);
+std::vector<std::size_t> all_rows(const ResultSet& rs);
+
+}  // namespace chaosweep

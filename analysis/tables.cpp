@@ -1,0 +1,301 @@
+#include "tables.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "grouping.hpp"
+#include "param_table.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// Columns that distinguish samples of one tuple, never parameters.
+const std::set<std::string>& replicate_columns() {
+  static const std::set<std::string> s{"seed"};
+  return s;
+}
+
+// Parameter columns (the parameter table's names, and env) that take more
+// than one value over `rows`, in parameter-table order.
+std::vector<std::string> varying_params(const ResultSet& rs, const std::vector<std::size_t>& rows,
+                                        const std::vector<std::string>& exclude) {
+  std::vector<std::string> cands{"env"};
+  for (const ParamInfo& p : param_table()) cands.emplace_back(p.name);
+  std::vector<std::string> out;
+  for (const std::string& c : cands) {
+    if (!rs.has(c) || replicate_columns().count(c) ||
+        std::find(exclude.begin(), exclude.end(), c) != exclude.end())
+      continue;
+    std::set<std::string> seen;
+    for (std::size_t r : rows) {
+      seen.insert(rs.cell(c, r));
+      if (seen.size() > 1) break;
+    }
+    if (seen.size() > 1) out.push_back(c);
+  }
+  return out;
+}
+
+std::string ok_count(const ResultSet& rs, const std::vector<std::size_t>& rows) {
+  return std::to_string(ok_rows(rs, rows).size()) + "/" + std::to_string(rows.size());
+}
+
+// ------------------------------------------------------------------ best
+
+struct RankedTuple {
+  Group tuple;
+  double score;
+};
+
+std::vector<RankedTuple> rank_tuples(const ResultSet& rs, const std::vector<std::string>& params,
+                                     const std::vector<std::size_t>& rows) {
+  std::vector<RankedTuple> out;
+  for (Group& g : group_rows(rs, params, rows)) {
+    const double s = tuple_score(rs, g.rows);
+    out.push_back({std::move(g), s});
+  }
+  // Stable: equal scores keep the tuples' key order.
+  std::stable_sort(out.begin(), out.end(), [](const RankedTuple& a, const RankedTuple& b) { return a.score < b.score; });
+  return out;
+}
+
+TextTable best_table(const ResultSet& rs, const TableOptions& opt) {
+  if (opt.top < 1) throw AnalysisError("--top must be at least 1");
+  TextTable t;
+  t.title = "Best parameter tuples by median coverage time";
+  const auto groups = group_rows(rs, opt.by, all_rows(rs));
+  // One parameter list for the whole table, so that its columns line up.
+  const std::vector<std::string> params = opt.params.empty() ? varying_params(rs, all_rows(rs), opt.by) : opt.params;
+  for (const std::string& p : params)
+    if (!rs.has(p)) (void)rs.num(p);  // names the missing column
+  t.header = opt.by;
+  t.header.push_back("rank");
+  t.header.insert(t.header.end(), params.begin(), params.end());
+  for (const char* h : {"median CT", "min CT", "ok", "median PR"}) t.header.emplace_back(h);
+  for (const Group& g : groups) {
+    const auto ranked = rank_tuples(rs, params, g.rows);
+    for (std::size_t k = 0; k < ranked.size() && int(k) < opt.top; ++k) {
+      const RankedTuple& rt = ranked[k];
+      std::vector<std::string> row = g.key;
+      row.push_back(std::to_string(k + 1));
+      row.insert(row.end(), rt.tuple.key.begin(), rt.tuple.key.end());
+      row.push_back(std::isinf(rt.score) ? "-" : fmt_sig(rt.score, 5));
+      row.push_back(fmt_sig(group_statistic(rs, rt.tuple.rows, "min"), 5));
+      row.push_back(ok_count(rs, rt.tuple.rows));
+      row.push_back(fmt_sig(group_statistic(rs, rt.tuple.rows, "median", "pr"), 3));
+      t.add_row(std::move(row));
+    }
+  }
+  t.notes.push_back("Tuples ranked by median CT over their runs, a run that did not reach the target counting as "
+                    "infinite; ties keep parameter order. PR = CT / T_opt.");
+  return t;
+}
+
+// --------------------------------------------------------------- summary
+
+TextTable summary_table(const ResultSet& rs, const TableOptions& opt) {
+  std::vector<std::string> by = opt.by;
+  if (by.empty() && rs.has("variant")) by = {"variant"};
+  TextTable t;
+  t.title = "Runs per group";
+  t.header = by;
+  for (const char* h : {"runs", "ok", "ok rate", "CT min", "CT q1", "CT median", "CT q3", "CT max", "median PR"})
+    t.header.emplace_back(h);
+  for (const Group& g : group_rows(rs, by, all_rows(rs))) {
+    std::vector<std::string> row = g.key;
+    row.push_back(std::to_string(g.rows.size()));
+    row.push_back(std::to_string(ok_rows(rs, g.rows).size()));
+    row.push_back(fmt_fixed(group_statistic(rs, g.rows, "ok_rate"), 3));
+    for (const char* s : {"min", "q1", "median", "q3", "max"}) row.push_back(fmt_sig(group_statistic(rs, g.rows, s), 5));
+    row.push_back(fmt_sig(group_statistic(rs, g.rows, "median", "pr"), 3));
+    t.add_row(std::move(row));
+  }
+  t.notes.push_back("CT quantiles over ok runs (linear interpolation, numpy's default); PR = CT / T_opt.");
+  return t;
+}
+
+// ---------------------------------------------------------------- table1
+
+std::map<std::string, std::pair<double, double>> read_paper(const std::string& path) {
+  std::map<std::string, std::pair<double, double>> out;
+  if (path.empty()) return out;
+  std::ifstream in(path);
+  if (!in) throw AnalysisError("--paper: cannot read " + path);
+  std::string line;
+  bool header = true;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.empty() || line[0] == '#') continue;
+    if (header) {
+      header = false;
+      if (line.rfind("row,paper_ct", 0) != 0)
+        throw AnalysisError("--paper: " + path + " must start with the header row,paper_ct,paper_pr");
+      continue;
+    }
+    const auto cells = split_list(line);
+    if (cells.size() < 2) throw AnalysisError("--paper: " + path + ":" + std::to_string(n) + ": expected row,paper_ct[,paper_pr]");
+    try {
+      out[cells[0]] = {std::stod(cells[1]), cells.size() > 2 ? std::stod(cells[2]) : nan};
+    } catch (const std::exception&) {
+      throw AnalysisError("--paper: " + path + ":" + std::to_string(n) + ": not a number");
+    }
+  }
+  return out;
+}
+
+bool flag(const ResultSet& rs, const char* col, const std::vector<std::size_t>& rows) {
+  if (!rs.has(col)) return false;
+  for (std::size_t r : rows)
+    if (rs.num(col)[r] != 0) return true;
+  return false;
+}
+
+// The technique set of a case: what its runs switch on. Scaling is on when
+// any run of the case has f != 1 (a search over f includes f = 1).
+std::string technique(const ResultSet& rs, const std::vector<std::size_t>& rows) {
+  if (rs.has("planner") && rs.text("planner")[rows[0]] == "logistic") return "Logistic map";
+  std::string s;
+  auto add = [&](const char* p) { s += (s.empty() ? "" : "+") + std::string(p); };
+  if (flag(rs, "index_switching", rows)) add("IS");
+  if (flag(rs, "map_zoning", rows)) add("MZ");
+  bool scaled = false;
+  for (std::size_t r : rows) scaled = scaled || rs.num("f")[r] != 1.0;
+  if (scaled) add("SC");
+  return s.empty() ? "original" : s;
+}
+
+double label_number(const std::string& s) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  return end && *end == '\0' && !s.empty() ? v : nan;
+}
+
+TextTable table1(const ResultSet& rs, const TableOptions& opt) {
+  for (const char* c : {"size_x", "sr", "env", "c", "ds_index", "f", "coverage_time", "status", "t_opt"})
+    if (!rs.has(c)) (void)rs.num(c);
+  const auto paper = read_paper(opt.paper);
+  // Cases: the spec's label (a Table 1 row) when every run has one.
+  bool labelled = rs.has("label");
+  if (labelled)
+    for (const std::string& l : rs.text("label")) labelled = labelled && !l.empty();
+  const std::vector<std::string> case_keys =
+      labelled ? std::vector<std::string>{"label"} : std::vector<std::string>{"size_x", "sr", "env", "variant"};
+  struct Case {
+    Group g;
+    std::string technique;
+    RankedTuple best;
+    std::size_t tuples;
+  };
+  std::vector<Case> cases;
+  const std::vector<std::string> tuple_keys{"c", "ds_index", "f"};
+  for (Group& g : group_rows(rs, case_keys, all_rows(rs))) {
+    auto ranked = rank_tuples(rs, tuple_keys, g.rows);
+    const std::string tech = technique(rs, g.rows);
+    cases.push_back({std::move(g), tech, std::move(ranked.front()), ranked.size()});
+  }
+  // Table 1's row order: by row number when the labels are numbers.
+  std::stable_sort(cases.begin(), cases.end(), [](const Case& a, const Case& b) {
+    const double x = label_number(a.g.key[0]), y = label_number(b.g.key[0]);
+    if (std::isnan(x) || std::isnan(y)) return false;
+    return x < y;
+  });
+  // The original Arnold's best CT per map (size, SR, env).
+  auto map_of = [&](const Case& c) {
+    const std::size_t r = c.g.rows[0];
+    return rs.cell("size_x", r) + "|" + rs.cell("sr", r) + "|" + rs.text("env")[r];
+  };
+  std::map<std::string, double> original;
+  for (const Case& c : cases)
+    if (c.technique == "original") {
+      auto [it, fresh] = original.try_emplace(map_of(c), c.best.score);
+      if (!fresh) it->second = std::min(it->second, c.best.score);
+    }
+
+  TextTable t;
+  t.title = "Table 1: best parameters per case (median CT over each tuple's runs)";
+  t.header = {"row", "technique", "map", "SR", "env", "c", "DSindex", "f", "CT (s)", "ok", "tuples",
+              "improvement %", "improvement h", "PR"};
+  if (!paper.empty()) {
+    t.header.emplace_back("paper CT (s)");
+    t.header.emplace_back("CT / paper");
+  }
+  for (const Case& c : cases) {
+    const std::size_t r = c.best.tuple.rows[0];
+    const bool mz = c.technique.find("MZ") != std::string::npos;
+    const bool sc = c.technique.find("SC") != std::string::npos;
+    const bool logistic = c.technique == "Logistic map";
+    const double ct = c.best.score;
+    const auto orig = original.find(map_of(c));
+    const double base = orig == original.end() || c.technique == "original" ? nan : orig->second;
+    const double gain = (base - ct) / base * 100.0, hours = (base - ct) / 3600.0;
+    std::vector<std::string> row{labelled ? c.g.key[0] : std::to_string(&c - cases.data() + 1),
+                                 c.technique,
+                                 rs.cell("size_x", r) + " m",
+                                 rs.cell("sr", r),
+                                 rs.text("env")[r],
+                                 mz ? rs.cell("c", r) : "N/A",
+                                 logistic ? "N/A" : rs.cell("ds_index", r),
+                                 sc ? rs.cell("f", r) : "N/A",
+                                 std::isinf(ct) ? "-" : fmt_sig(ct, 5),
+                                 ok_count(rs, c.best.tuple.rows),
+                                 std::to_string(c.tuples),
+                                 std::isfinite(gain) ? fmt_fixed(gain, 1) : "-",
+                                 std::isfinite(hours) ? fmt_fixed(hours, 2) : "-",
+                                 std::isinf(ct) ? "-" : fmt_fixed(ct / rs.num("t_opt")[r], 2)};
+    if (!paper.empty()) {
+      const auto p = paper.find(c.g.key[0]);
+      row.push_back(p == paper.end() ? "-" : fmt_sig(p->second.first, 5));
+      row.push_back(p == paper.end() || std::isinf(ct) ? "-" : fmt_fixed(ct / p->second.first, 2));
+    }
+    t.add_row(std::move(row));
+  }
+  t.notes.push_back("Per case, the parameter tuple (c, DSindex, f) with the lowest median CT over its runs "
+                    "(a run that missed the target counts as infinite); ok = its runs that reached the target; "
+                    "tuples = tuples searched.");
+  t.notes.push_back("Improvement over the best original Arnold tuple on the same map (size, SR, env); "
+                    "PR = CT / T_opt, T_opt = 0.9 free area / (SR v).");
+  return t;
+}
+
+}  // namespace
+
+double tuple_score(const ResultSet& rs, const std::vector<std::size_t>& rows) {
+  std::vector<double> v;
+  const auto& status = rs.text("status");
+  const auto& ct = rs.num("coverage_time");
+  for (std::size_t r : rows) v.push_back(status[r] == "ok" ? ct[r] : inf);
+  if (v.empty()) return inf;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  // Median; with infinities present the upper middle decides (never inf - inf).
+  if (n % 2) return v[n / 2];
+  if (std::isinf(v[n / 2])) return inf;
+  return 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+const std::vector<std::string>& table_names() {
+  static const std::vector<std::string> names{"table1", "best", "summary"};
+  return names;
+}
+
+TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt) {
+  if (rs.rows() == 0) throw AnalysisError("the result files hold no runs");
+  if (name == "table1") return table1(rs, opt);
+  if (name == "best") return best_table(rs, opt);
+  if (name == "summary") return summary_table(rs, opt);
+  std::string list;
+  for (const std::string& n : table_names()) list += (list.empty() ? "" : ", ") + n;
+  throw AnalysisError("unknown table '" + name + "' (allowed: " + list + ")");
+}
+
+}  // namespace chaosweep

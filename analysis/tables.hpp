@@ -1,0 +1,31 @@
+#pragma once
+// The tables `chaosweep table NAME` prints, each built from result rows.
+#include <string>
+#include <vector>
+
+#include "result_set.hpp"
+#include "text_table.hpp"
+
+namespace chaosweep {
+
+struct TableOptions {
+  std::vector<std::string> by;      // group columns (best, summary); empty: the table's default
+  std::vector<std::string> params;  // parameter columns (best); empty: those that vary in a group
+  int top = 5;                      // tuples per group (best)
+  std::string paper;                // table1: CSV of the paper's values (row,paper_ct,paper_pr)
+};
+
+// table1: per Table 1 case (the run's label, else size/SR/env/variant), the
+//   best parameter tuple (c, DSindex, f) by median CT, its CT, improvement
+//   over the same map's original Arnold, and PR; seed 000's layout.
+// best: the top-k parameter tuples per group by median CT.
+// summary: per group, runs, ok rate and CT quantiles.
+TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt);
+const std::vector<std::string>& table_names();
+
+// A parameter tuple's score: the median coverage time of its runs, a run
+// that did not reach the target counting as infinitely long (so a tuple
+// whose runs mostly time out never wins).
+double tuple_score(const ResultSet& rs, const std::vector<std::size_t>& rows);
+
+}  // namespace chaosweep

@@ -1,0 +1,69 @@
+// `chaosweep figure NAME RESULTS.h5... -o FILE.png`
+#include <iostream>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "cli_subcommands.hpp"
+#include "figures.hpp"
+#include "grouping.hpp"
+
+namespace chaosweep {
+
+void add_figure_command(CLI::App& app, std::function<int()>& action) {
+  auto* cmd = app.add_subcommand("figure", "Draw a figure from result files (PNG, SVG, PDF or EPS) and its data as CSV");
+  cmd->footer(
+      "Figures (each also writes its data as CSV beside the image, FILE.csv):\n"
+      "  fig6a       minimum CT over B as a colour map over (A, C); --mark A,B,C (default the\n"
+      "              paper's 0.5,0.25,0.25)\n"
+      "  fig6b       share of (A, B, C) tuples reaching the target within each time bound up to\n"
+      "              --bound (default: the runs' max_time); prints the marked tuple's percentile\n"
+      "  heatmap     --stat (min, q1, median, mean, q3, max, ok_rate, runs) over --x and --y\n"
+      "  trajectory  one run (--run ID) replayed over its map: path, transits, obstacles, zone\n"
+      "              midpoints, covered cells\n"
+      "  coverage    coverage vs time of several runs (--run ID, repeatable) or of the median\n"
+      "              run of each value of --by COLUMN\n"
+      "Example: chaosweep figure fig6a out/fig6/results.h5 -o out/fig6/fig6a.png");
+  struct Opts {
+    std::string name, out, mark, size = "800x600";
+    std::vector<std::string> files;
+    FigureOptions fig;
+  };
+  auto o = std::make_shared<Opts>();
+  cmd->add_option("name", o->name, "fig6a, fig6b, heatmap, trajectory or coverage")->required();
+  cmd->add_option("results", o->files, "result files (.h5)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", o->out, "image file: .png, .svg, .pdf or .eps")->required();
+  cmd->add_option("--x", o->fig.x, "heatmap: column on the x axis");
+  cmd->add_option("--y", o->fig.y, "heatmap: column on the y axis");
+  cmd->add_option("--stat", o->fig.stat, "heatmap: statistic")->capture_default_str();
+  cmd->add_option("--mark", o->mark, "fig6a/fig6b: the tuple to mark, A,B,C");
+  cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
+  cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
+  cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column");
+  cmd->add_option("--size", o->size, "image size in pixels, WIDTHxHEIGHT")->capture_default_str();
+  cmd->callback([o, &action] {
+    action = [o]() -> int {
+      try {
+        o->fig.size = parse_image_size(o->size);
+        for (const std::string& v : split_list(o->mark)) {
+          try {
+            o->fig.mark.push_back(std::stod(v));
+          } catch (const std::exception&) {
+            throw AnalysisError("--mark: '" + v + "' is not a number");
+          }
+        }
+        const FigureOutput out = make_figure(o->name, ResultSet::load(o->files), o->fig, o->out);
+        for (const std::string& line : out.lines) std::cout << line << "\n";
+        std::cout << "wrote " << out.image << " and " << out.csv << "\n";
+        return exit_ok;
+      } catch (const AnalysisError& e) {
+        std::cerr << "chaosweep figure: " << e.what() << "\n";
+        return exit_bad_input;
+      } catch (const std::exception& e) {
+        std::cerr << "chaosweep figure: " << e.what() << "\n";
+        return exit_failure;
+      }
+    };
+  });
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,70 @@
+// `chaosweep table NAME RESULTS.h5...`
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "cli_subcommands.hpp"
+#include "grouping.hpp"
+#include "tables.hpp"
+
+namespace chaosweep {
+
+void add_table_command(CLI::App& app, std::function<int()>& action) {
+  auto* cmd = app.add_subcommand("table", "Print a table from result files (Markdown, CSV or LaTeX)");
+  cmd->footer(
+      "Tables:\n"
+      "  table1   seed 000's Table 1: per case (the runs' label, else size/SR/env/variant) the\n"
+      "           best (c, DSindex, f) by median CT, its CT, improvement over the same map's\n"
+      "           original Arnold, PR; --paper CSV adds the paper's CT (experiments/table1_paper.csv)\n"
+      "  best     the --top K parameter tuples per --by group, by median CT (timeouts count as\n"
+      "           infinite); parameters: --params, else those that vary\n"
+      "  summary  per --by group (default: variant): runs, ok rate, CT quantiles, median PR\n"
+      "Example: chaosweep table best out/fig6/results.h5 --top 10");
+  struct Opts {
+    std::string name, format = "md", out, by, params;
+    std::vector<std::string> files;
+    TableOptions table;
+  };
+  auto o = std::make_shared<Opts>();
+  cmd->add_option("name", o->name, "table1, best or summary")->required();
+  cmd->add_option("results", o->files, "result files (.h5)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--format", o->format, "md, csv or tex")->capture_default_str();
+  cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
+  cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary)");
+  cmd->add_option("--params", o->params, "parameter columns, comma-separated (best)");
+  cmd->add_option("--top", o->table.top, "tuples per group (best)")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--paper", o->table.paper, "table1: CSV with row,paper_ct,paper_pr")->check(CLI::ExistingFile);
+  cmd->callback([o, &action] {
+    action = [o]() -> int {
+      try {
+        const TableFormat f = parse_table_format(o->format);
+        o->table.by = split_list(o->by);
+        o->table.params = split_list(o->params);
+        const TextTable t = make_table(o->name, ResultSet::load(o->files), o->table);
+        if (o->out.empty()) {
+          t.write(std::cout, f);
+          return exit_ok;
+        }
+        const std::string tmp = o->out + ".tmp";
+        {
+          std::ofstream out(tmp);
+          t.write(out, f);
+          out.flush();
+          if (!out) throw AnalysisError("cannot write " + o->out);
+        }
+        std::filesystem::rename(tmp, o->out);
+        return exit_ok;
+      } catch (const AnalysisError& e) {
+        std::cerr << "chaosweep table: " << e.what() << "\n";
+        return exit_bad_input;
+      } catch (const std::exception& e) {
+        std::cerr << "chaosweep table: " << e.what() << "\n";
+        return exit_failure;
+      }
+    };
+  });
+}
+
+}  // namespace chaosweep
