@@ -1,0 +1,455 @@
+// analysis/: tables and figures from result files. Golden tests run on small
+// hand-made result files whose numbers can be checked by hand (the expected
+// values are also asserted directly); figure tests render real PNGs.
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "figures.hpp"
+#include "grouping.hpp"
+#include "h5_store.hpp"
+#include "replay.hpp"
+#include "result_set.hpp"
+#include "tables.hpp"
+#include "test_util.hpp"
+
+namespace chaosweep {
+namespace {
+
+using test::TempDir;
+
+constexpr double timeout = std::numeric_limits<double>::infinity();
+
+// One stored row with the given parameters and outcome (ct = timeout for a
+// run that missed the target).
+RunRow make_row(std::int64_t id, const RunParams& p, const std::string& env, const std::string& label, double ct,
+                double t_opt = 2250) {
+  RunRow r;
+  r.tuple.run_id = id;
+  r.tuple.env_spec = env;
+  r.tuple.label = label;
+  r.tuple.params = p;
+  r.result.status = std::isinf(ct) ? Status::timeout : Status::ok;
+  r.result.coverage_time = std::isinf(ct) ? std::numeric_limits<double>::quiet_NaN() : ct;
+  r.result.t_opt = t_opt;
+  r.result.pr = std::isinf(ct) ? std::numeric_limits<double>::quiet_NaN() : ct / t_opt;
+  r.result.steps = 100;
+  return r;
+}
+
+void write_results(const std::string& path, const std::vector<RunRow>& rows) {
+  H5RunWriter w(path);
+  w.append(rows);
+  w.finish();
+}
+
+// Table 1 in miniature: one map (50 m, SR 1, no obstacles), four cases
+// labelled as Table 1 rows, two seeds per tuple.
+//   row 1 original: ds 1 -> 1000, 1200 (median 1100); ds 2 -> 900, timeout
+//                   (median infinite); ds 3 -> 800, 1000 (median 900: best)
+//   row 12 IS:      ds 3 -> 700, 800 (750)
+//   row 20 MZ:      c 0.1 -> 600, 640 (620); c 0.5 -> 500, 560 (530: best)
+//   row 24 SC:      f 1 -> 900, 950 (925); f 2 -> 450, 470 (460: best)
+std::vector<RunRow> table1_rows() {
+  std::vector<RunRow> rows;
+  std::int64_t id = 0;
+  auto add = [&](const std::string& label, RunParams p, std::vector<double> cts) {
+    p.size_x = p.size_y = 50;
+    p.sr = 1;
+    for (std::size_t s = 0; s < cts.size(); ++s) {
+      p.seed = std::int64_t(s);
+      rows.push_back(make_row(id++, p, "no_obstacles", label, cts[s]));
+    }
+  };
+  RunParams p;
+  for (auto [ds, a, b] : {std::tuple{1, 1000.0, 1200.0}, {2, 900.0, timeout}, {3, 800.0, 1000.0}}) {
+    p.ds_index = ds;
+    add("1", p, {a, b});
+  }
+  p.ds_index = 3;
+  p.index_switching = true;
+  add("12", p, {700, 800});
+  p.index_switching = false;
+  p.map_zoning = true;
+  p.c = 0.1;
+  add("20", p, {600, 640});
+  p.c = 0.5;
+  add("20", p, {500, 560});
+  p.map_zoning = false;
+  p.c = 0.25;
+  p.f = 1;
+  add("24", p, {900, 950});
+  p.f = 2;
+  add("24", p, {450, 470});
+  return rows;
+}
+
+// Fig. 6 in miniature: A in {0.4, 0.5}, B in {0.2, 0.3}, C in {0.25, 0.35},
+// one run each, budget 5000 s.
+std::vector<RunRow> fig6_rows() {
+  const std::vector<std::tuple<double, double, double, double>> cts{
+      {0.4, 0.2, 0.25, 3000}, {0.4, 0.2, 0.35, 2500}, {0.4, 0.3, 0.25, 2000}, {0.4, 0.3, 0.35, timeout},
+      {0.5, 0.2, 0.25, 1500}, {0.5, 0.2, 0.35, 4000}, {0.5, 0.3, 0.25, 3500}, {0.5, 0.3, 0.35, 1000}};
+  std::vector<RunRow> rows;
+  for (const auto& [a, b, c, ct] : cts) {
+    RunParams p;
+    p.A = a, p.B = b, p.C = c;
+    p.max_time = 5000;
+    rows.push_back(make_row(std::int64_t(rows.size()), p, "empty", "", ct));
+  }
+  return rows;
+}
+
+std::string golden_path(const std::string& name) { return std::string(CHAOSWEEP_SOURCE_DIR) + "/tests/golden/" + name; }
+
+// Compares with tests/golden/NAME; CHAOSWEEP_UPDATE_GOLDEN=1 rewrites the
+// file instead (then review the diff before committing it).
+void expect_golden(const std::string& name, const std::string& actual) {
+  const std::string path = golden_path(name);
+  if (const char* u = std::getenv("CHAOSWEEP_UPDATE_GOLDEN"); u && std::string(u) == "1") {
+    test::write_file(path, actual);
+    return;
+  }
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << "missing golden file " << path << " (CHAOSWEEP_UPDATE_GOLDEN=1 writes it)";
+  EXPECT_EQ(test::read_file(path), actual) << "differs from " << path;
+}
+
+std::string table_text(const std::string& name, const ResultSet& rs, const TableOptions& opt, TableFormat f) {
+  std::ostringstream os;
+  make_table(name, rs, opt).write(os, f);
+  return os.str();
+}
+
+class Table1Results : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = dir_.file("t1.h5");
+    write_results(path_, table1_rows());
+    paper_ = dir_.file("paper.csv");
+    test::write_file(paper_, "# test\nrow,paper_ct,paper_pr\n1,1000,0.44\n12,750,0.33\n");
+  }
+  TempDir dir_;
+  std::string path_, paper_;
+};
+
+TEST_F(Table1Results, Table1PicksTheBestTupleByMedianAndComparesWithTheOriginal) {
+  const ResultSet rs = ResultSet::load({path_});
+  TableOptions opt;
+  opt.paper = paper_;
+  const TextTable t = make_table("table1", rs, opt);
+  ASSERT_EQ(t.rows.size(), 4u);
+  auto col = [&](const std::string& h) {
+    return std::size_t(std::find(t.header.begin(), t.header.end(), h) - t.header.begin());
+  };
+  // Row 1: ds 3 wins with median 900 (ds 2's timeout makes its median infinite).
+  EXPECT_EQ(t.rows[0][col("row")], "1");
+  EXPECT_EQ(t.rows[0][col("DSindex")], "3");
+  EXPECT_EQ(t.rows[0][col("CT (s)")], "900");
+  EXPECT_EQ(t.rows[0][col("tuples")], "3");
+  EXPECT_EQ(t.rows[0][col("PR")], "0.40");
+  EXPECT_EQ(t.rows[0][col("CT / paper")], "0.90");
+  // Row 20: c 0.5 with 530 s, (900 - 530) / 900 = 41.1% and 370 s = 0.10 h faster.
+  EXPECT_EQ(t.rows[2][col("technique")], "MZ");
+  EXPECT_EQ(t.rows[2][col("c")], "0.5");
+  EXPECT_EQ(t.rows[2][col("CT (s)")], "530");
+  EXPECT_EQ(t.rows[2][col("improvement %")], "41.1");
+  EXPECT_EQ(t.rows[2][col("improvement h")], "0.10");
+  // Row 24: scaling searched over f = 1, 2: f = 2 wins (460 s, 48.9%).
+  EXPECT_EQ(t.rows[3][col("technique")], "SC");
+  EXPECT_EQ(t.rows[3][col("f")], "2");
+  EXPECT_EQ(t.rows[3][col("improvement %")], "48.9");
+  expect_golden("table1.md", table_text("table1", rs, opt, TableFormat::md));
+  expect_golden("table1.tex", table_text("table1", rs, opt, TableFormat::tex));
+}
+
+TEST_F(Table1Results, SummaryGivesRunsOkRateAndQuantilesPerGroup) {
+  const ResultSet rs = ResultSet::load({path_});
+  TableOptions opt;
+  opt.by = {"label"};
+  const TextTable t = make_table("summary", rs, opt);
+  ASSERT_EQ(t.rows.size(), 4u);
+  // Label 1: 6 runs, 5 ok; CTs 800 900 1000 1000 1200.
+  EXPECT_EQ(t.rows[0], (std::vector<std::string>{"1", "6", "5", "0.833", "800", "900", "1000", "1000", "1200", "0.444"}));
+  expect_golden("summary_by_label.csv", table_text("summary", rs, opt, TableFormat::csv));
+}
+
+TEST_F(Table1Results, BestRanksTuplesPerGroupAndKeepsTopK) {
+  const ResultSet rs = ResultSet::load({path_});
+  TableOptions opt;
+  opt.by = {"label"};
+  opt.params = {"ds_index", "c", "f"};
+  opt.top = 2;
+  const TextTable t = make_table("best", rs, opt);
+  // Label 1 has 3 tuples (top 2 shown), 12 has 1, 20 and 24 have 2 each.
+  ASSERT_EQ(t.rows.size(), 7u);
+  EXPECT_EQ(t.rows[0][1], "1");  // rank
+  EXPECT_EQ(t.rows[0][2], "3");  // ds_index 3: median 900
+  EXPECT_EQ(t.rows[1][2], "1");  // ds_index 1: median 1100 (ds 2 is infinite)
+  expect_golden("best_by_label.md", table_text("best", rs, opt, TableFormat::md));
+}
+
+TEST(Tables, BadNamesAndColumnsAreNamedInTheError) {
+  TempDir dir;
+  write_results(dir.file("r.h5"), fig6_rows());
+  const ResultSet rs = ResultSet::load({dir.file("r.h5")});
+  TableOptions opt;
+  try {
+    make_table("tabel1", rs, opt);
+    FAIL() << "no error";
+  } catch (const AnalysisError& e) {
+    EXPECT_NE(std::string(e.what()).find("allowed: table1, best, summary"), std::string::npos) << e.what();
+  }
+  opt.by = {"colour"};
+  try {
+    make_table("summary", rs, opt);
+    FAIL() << "no error";
+  } catch (const AnalysisError& e) {
+    EXPECT_NE(std::string(e.what()).find("no column 'colour'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ResultSet::load({dir.file("missing.h5")}), AnalysisError);
+  test::write_file(dir.file("foreign.h5"), "not hdf5");
+  EXPECT_THROW(ResultSet::load({dir.file("foreign.h5")}), AnalysisError);
+}
+
+TEST(Tables, ResultsOfSeveralFilesAreReadAsOne) {
+  TempDir dir;
+  auto rows = table1_rows();
+  write_results(dir.file("a.h5"), {rows.begin(), rows.begin() + 6});
+  write_results(dir.file("b.h5"), {rows.begin() + 6, rows.end()});
+  write_results(dir.file("all.h5"), rows);
+  TableOptions opt;
+  EXPECT_EQ(table_text("table1", ResultSet::load({dir.file("a.h5"), dir.file("b.h5")}), opt, TableFormat::md),
+            table_text("table1", ResultSet::load({dir.file("all.h5")}), opt, TableFormat::md));
+}
+
+TEST(Grouping, QuantileInterpolatesLikeNumpy) {
+  EXPECT_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
+  EXPECT_EQ(quantile({1, 2, 3, 4}, 0.25), 1.75);
+  EXPECT_EQ(quantile({7}, 0.75), 7);
+  EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
+}
+
+TEST(TextTables, CsvQuotesAndTexEscapes) {
+  TextTable t;
+  t.header = {"name", "value"};
+  t.add_row({"a,b", "say \"hi\""});
+  t.add_row({"x_1 & 50%", "3"});
+  std::ostringstream csv, tex;
+  t.write(csv, TableFormat::csv);
+  t.write(tex, TableFormat::tex);
+  EXPECT_EQ(csv.str(), "name,value\n\"a,b\",\"say \"\"hi\"\"\"\nx_1 & 50%,3\n");
+  EXPECT_NE(tex.str().find("x\\_1 \\& 50\\% & 3 \\\\"), std::string::npos) << tex.str();
+  EXPECT_THROW(t.add_row({"only one"}), std::logic_error);
+  EXPECT_THROW(parse_table_format("html"), AnalysisError);
+}
+
+// ------------------------------------------------------------------ figures
+
+struct Png {
+  int width = 0, height = 0;
+  std::size_t colours = 0;
+  double non_white = 0;  // share of pixels that are not white
+};
+
+Png read_png(const std::string& path) {
+  png_image img{};
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, path.c_str())) return {};
+  img.format = PNG_FORMAT_RGB;
+  std::vector<unsigned char> px(PNG_IMAGE_SIZE(img));
+  if (!png_image_finish_read(&img, nullptr, px.data(), 0, nullptr)) return {};
+  Png out{int(img.width), int(img.height), 0, 0};
+  std::set<unsigned> colours;
+  std::size_t non_white = 0;
+  for (std::size_t i = 0; i + 2 < px.size(); i += 3) {
+    colours.insert(unsigned(px[i]) << 16 | unsigned(px[i + 1]) << 8 | px[i + 2]);
+    non_white += !(px[i] == 255 && px[i + 1] == 255 && px[i + 2] == 255);
+  }
+  out.colours = colours.size();
+  out.non_white = double(non_white) / double(px.size() / 3);
+  return out;
+}
+
+void expect_drawn(const std::string& png, int w, int h) {
+  const Png p = read_png(png);
+  EXPECT_EQ(p.width, w) << png;
+  EXPECT_EQ(p.height, h) << png;
+  EXPECT_GT(p.colours, 8u) << png << ": a blank or single-colour image";
+  EXPECT_GT(p.non_white, 0.03) << png << ": almost nothing drawn";
+}
+
+class Fig6Results : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = dir_.file("fig6.h5");
+    write_results(path_, fig6_rows());
+    opt_.size = {640, 480};
+  }
+  FigureOutput draw(const std::string& name, const std::string& file) {
+    return make_figure(name, ResultSet::load({path_}), opt_, dir_.file(file));
+  }
+  TempDir dir_;
+  std::string path_;
+  FigureOptions opt_;
+};
+
+TEST_F(Fig6Results, Fig6aIsTheMinimumOverBPerAAndC) {
+  const FigureOutput out = draw("fig6a", "fig6a.png");
+  EXPECT_EQ(out.csv, dir_.file("fig6a.csv"));
+  const std::string csv = test::read_file(out.csv);
+  // min over B: (0.4, 0.25) 2000; (0.4, 0.35) 2500 (the other timed out); (0.5, 0.25) 1500; (0.5, 0.35) 1000.
+  EXPECT_EQ(csv, "A,C,min_ct,runs,ok\n0.4,0.25,2000,2,2\n0.4,0.35,2500,2,1\n0.5,0.25,1500,2,2\n0.5,0.35,1000,2,2\n");
+  expect_golden("fig6a.csv", csv);
+  expect_drawn(out.image, 640, 480);
+}
+
+TEST_F(Fig6Results, Fig6bRanksTheMarkedTupleAmongAllTuples) {
+  opt_.mark = {0.5, 0.2, 0.25};
+  const FigureOutput out = draw("fig6b", "fig6b.png");
+  // Sorted CTs 1000 1500 2000 2500 3000 3500 4000 (and one timeout): the
+  // marked tuple's 1500 s is reached by 2 of 8 tuples.
+  ASSERT_EQ(out.lines.size(), 1u);
+  EXPECT_EQ(out.lines[0], "tuple (0.5, 0.2, 0.25): median CT 1500 s; 25.0% of 8 tuples are at least as fast (rank 2)");
+  expect_golden("fig6b.csv", test::read_file(out.csv));
+  expect_drawn(out.image, 640, 480);
+}
+
+TEST_F(Fig6Results, Fig6bFallsBackToTheNearestGridTupleAndSaysSo) {
+  opt_.mark = {0.5, 0.21, 0.25};
+  const FigureOutput out = draw("fig6b", "near.png");
+  ASSERT_EQ(out.lines.size(), 1u);
+  EXPECT_EQ(out.lines[0].rfind("nearest grid tuple to (0.5, 0.21, 0.25): (0.5, 0.2, 0.25)", 0), 0u) << out.lines[0];
+}
+
+TEST_F(Fig6Results, HeatmapOfOkRateOverTwoAxes) {
+  opt_.x = "A";
+  opt_.y = "B";
+  opt_.stat = "ok_rate";
+  const FigureOutput out = draw("heatmap", "ok.svg");
+  EXPECT_EQ(test::read_file(out.csv), "A,B,ok_rate,runs,ok\n0.4,0.2,1,2,2\n0.4,0.3,0.5,2,1\n0.5,0.2,1,2,2\n0.5,0.3,1,2,2\n");
+  EXPECT_NE(test::read_file(out.image).find("<svg"), std::string::npos);
+}
+
+TEST_F(Fig6Results, EveryImageFormatIsWrittenAndOthersAreRefused) {
+  for (const char* f : {"a.png", "a.svg", "a.pdf", "a.eps"}) {
+    draw("fig6a", f);
+    EXPECT_GT(std::filesystem::file_size(dir_.file(f)), 1000u) << f;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("a.prc")));  // the PDF's intermediate is removed
+  try {
+    draw("fig6a", "a.jpg");
+    FAIL() << "no error";
+  } catch (const AnalysisError& e) {
+    EXPECT_NE(std::string(e.what()).find("allowed: .png, .svg, .pdf, .eps"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("a.csv")) && !std::filesystem::exists(dir_.file("a.png")));
+  EXPECT_THROW(parse_image_size("640"), AnalysisError);
+  EXPECT_THROW(parse_image_size("50x50"), AnalysisError);
+}
+
+// Trajectory and coverage figures replay real runs: a small sweep on a 12 m
+// map, one run with map zoning so that transits and zone midpoints appear.
+class ReplayedRuns : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir;
+    test::write_file(dir_->file("spec.toml"), R"([sweep]
+name = "replay"
+[fixed]
+size = 12
+sr = 1
+max_time = 3000
+[axes]
+map_zoning = [0, 1]
+A = [0.45, 0.5]
+)");
+    const auto r = test::run_chaosweep("sweep " + dir_->file("spec.toml") + " -o " + dir_->file("r.h5") + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  static void TearDownTestSuite() { delete dir_; }
+  static TempDir* dir_;
+};
+TempDir* ReplayedRuns::dir_ = nullptr;
+
+TEST_F(ReplayedRuns, TrajectoryReplaysTheStoredRunExactly) {
+  const ResultSet rs = ResultSet::load({dir_->file("r.h5")});
+  FigureOptions opt;
+  opt.runs = {3};  // map zoning, A = 0.5
+  opt.size = {700, 700};
+  const FigureOutput out = make_figure("trajectory", rs, opt, dir_->file("traj.png"));
+  EXPECT_TRUE(out.lines.empty()) << out.lines[0];  // no replay mismatch
+  const std::string csv = test::read_file(out.csv);
+  std::istringstream in(csv);
+  std::string line, last;
+  std::size_t n = 0, transits = 0;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,x,y,kind,ds_index,visited_cells");
+  while (std::getline(in, line)) {
+    if (n == 0) {
+      EXPECT_NE(line.find(",start,"), std::string::npos) << line;
+    }
+    transits += line.find(",transit,") != std::string::npos;
+    last = line;
+    ++n;
+  }
+  const std::size_t r = row_of_run(rs, 3);
+  EXPECT_EQ(double(n - 1 - transits), rs.num("steps")[r]);  // every integration step, plus the start
+  EXPECT_EQ(last.substr(last.rfind(',') + 1), rs.cell("visited_cells", r));
+  expect_drawn(out.image, 700, 700);
+}
+
+TEST_F(ReplayedRuns, CoverageCurvesRiseToEachRunsFinalCoverage) {
+  const ResultSet rs = ResultSet::load({dir_->file("r.h5")});
+  FigureOptions opt;
+  opt.by = "map_zoning";  // the median run of each
+  const FigureOutput out = make_figure("coverage", rs, opt, dir_->file("cov.png"));
+  std::istringstream in(test::read_file(out.csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "run_id,t,coverage_percent");
+  std::set<std::string> runs;
+  double prev = -1;
+  std::string prev_run;
+  while (std::getline(in, line)) {
+    const std::string run = line.substr(0, line.find(','));
+    const double pct = std::stod(line.substr(line.rfind(',') + 1));
+    if (run == prev_run) {
+      EXPECT_GE(pct, prev) << line;  // never decreases
+    }
+    runs.insert(run);
+    prev = pct, prev_run = run;
+  }
+  EXPECT_EQ(runs.size(), 2u);
+  expect_drawn(out.image, 800, 600);
+}
+
+TEST_F(ReplayedRuns, CommandLineWritesImageAndCsvAndRejectsBadInput) {
+  const std::string h5 = dir_->file("r.h5");
+  auto r = test::run_chaosweep("figure fig6b " + h5 + " -o " + dir_->file("cli.png") + " --mark 0.5,0.25,0.25");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_->file("cli.png")));
+  EXPECT_TRUE(std::filesystem::exists(dir_->file("cli.csv")));
+  r = test::run_chaosweep("table summary " + h5 + " --by map_zoning --format csv");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("map_zoning,runs,ok,", 0), 0u) << r.out;
+  r = test::run_chaosweep("table nosuch " + h5);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown table 'nosuch'"), std::string::npos) << r.err;
+  r = test::run_chaosweep("figure heatmap " + h5 + " --x A --y colour -o " + dir_->file("h.png"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no column 'colour'"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_->file("h.png")));
+  r = test::run_chaosweep("figure trajectory " + h5 + " --run 99 -o " + dir_->file("t.png"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no run with run_id 99"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace chaosweep
