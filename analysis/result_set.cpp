@@ -1,7 +1,6 @@
 #include "result_set.hpp"
 
 #include <algorithm>
-#include <set>
 
 #include "h5_store.hpp"
 #include "param_table.hpp"
@@ -11,46 +10,41 @@ namespace chaosweep {
 ResultSet ResultSet::load(const std::vector<std::string>& paths) {
   if (paths.empty()) throw AnalysisError("no result file given");
   ResultSet rs;
-  // Columns every file has, with the first file's types.
-  std::vector<std::pair<std::string, Column::Type>> common;
-  for (std::size_t f = 0; f < paths.size(); ++f) {
-    std::vector<std::pair<std::string, Column::Type>> types;
-    try {
-      types = column_types(paths[f]);
-    } catch (const std::exception& e) {
-      throw AnalysisError(paths[f] + ": not a chaosweep result file (" + e.what() + ")");
-    }
-    if (f == 0) {
-      common = types;
-      continue;
-    }
-    std::set<std::string> here;
-    for (const auto& [n, t] : types) here.insert(n);
-    std::erase_if(common, [&](const auto& c) { return !here.count(c.first); });
-  }
+  std::vector<StoredColumns> files;
   for (const std::string& path : paths) {
     try {
-      const auto n = std::size_t(count_rows(path));
-      for (const auto& [name, type] : common) {
-        if (type == Column::Type::text) {
-          auto col = read_text_column(path, name);
-          auto& dst = rs.text_[name];
-          dst.insert(dst.end(), col.begin(), col.end());
-        } else if (type == Column::Type::i64) {
-          const auto col = read_i64_column(path, name);
-          auto& dst = rs.num_[name];
-          for (std::int64_t v : col) dst.push_back(double(v));
-        } else {
-          const auto col = read_f64_column(path, name);
-          auto& dst = rs.num_[name];
-          dst.insert(dst.end(), col.begin(), col.end());
-        }
-      }
-      rs.rows_ += n;
+      files.push_back(read_all_columns(path));
     } catch (const std::exception& e) {
-      throw AnalysisError(path + ": " + e.what());
+      throw AnalysisError(path + ": not a readable chaosweep result file (" + e.what() + ")");
     }
-    rs.sources_.push_back(path);
+  }
+  // Columns every file has (a merged or older file may carry fewer), with
+  // the first file's kinds.
+  auto in_all = [&](const std::string& name, bool numeric) {
+    for (const StoredColumns& f : files) {
+      bool found = false;
+      if (numeric) {
+        for (const auto& [n, v] : f.numeric) found = found || n == name;
+      } else {
+        for (const auto& [n, v] : f.text) found = found || n == name;
+      }
+      if (!found) return false;
+    }
+    return true;
+  };
+  for (const auto& [name, v] : files[0].numeric)
+    if (in_all(name, true)) rs.num_[name];
+  for (const auto& [name, v] : files[0].text)
+    if (in_all(name, false)) rs.text_[name];
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    StoredColumns& f = files[i];
+    for (auto& [name, v] : f.numeric)
+      if (auto it = rs.num_.find(name); it != rs.num_.end()) it->second.insert(it->second.end(), v.begin(), v.end());
+    for (auto& [name, v] : f.text)
+      if (auto it = rs.text_.find(name); it != rs.text_.end())
+        it->second.insert(it->second.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+    rs.rows_ += f.rows;
+    rs.sources_.push_back(paths[i]);
   }
   return rs;
 }

@@ -1,5 +1,6 @@
 #include "h5_store.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -264,6 +265,85 @@ std::vector<std::pair<std::string, Column::Type>> column_types(const std::string
                                                 : Column::Type::text;
     out.emplace_back(name, t);
     H5free_memory(name);
+  }
+  return out;
+}
+
+StoredColumns read_all_columns(const std::string& path) {
+  const RunsDataset runs(path);
+  Handle ftype{H5Dget_type(runs.dset.id), H5Tclose};
+  Handle native{H5Tget_native_type(ftype.id, H5T_DIR_ASCEND), H5Tclose};
+  const std::size_t row_size = H5Tget_size(native.id);
+  struct Member {
+    std::size_t offset, size;
+    H5T_class_t cls;
+    bool is_signed;
+    std::size_t index;  // into numeric or text
+  };
+  StoredColumns out;
+  out.rows = std::size_t(runs.rows);
+  std::vector<Member> members;
+  for (int i = 0; i < H5Tget_nmembers(native.id); ++i) {
+    char* name = H5Tget_member_name(native.id, unsigned(i));
+    Handle mt{H5Tget_member_type(native.id, unsigned(i)), H5Tclose};
+    Member m{H5Tget_member_offset(native.id, unsigned(i)), H5Tget_size(mt.id), H5Tget_class(mt.id),
+             H5Tget_class(mt.id) == H5T_INTEGER && H5Tget_sign(mt.id) == H5T_SGN_2, 0};
+    const bool ok = (m.cls == H5T_FLOAT && (m.size == 8 || m.size == 4)) ||
+                    (m.cls == H5T_INTEGER && (m.size == 8 || m.size == 4)) ||
+                    (m.cls == H5T_STRING && !H5Tis_variable_str(mt.id));
+    if (ok) {
+      if (m.cls == H5T_STRING) {
+        m.index = out.text.size();
+        out.text.emplace_back(name, std::vector<std::string>{});
+        out.text.back().second.reserve(out.rows);
+      } else {
+        m.index = out.numeric.size();
+        out.numeric.emplace_back(name, std::vector<double>{});
+        out.numeric.back().second.reserve(out.rows);
+      }
+      members.push_back(m);
+    }
+    H5free_memory(name);
+  }
+  // Blocks of rows bound the memory whatever the file's size.
+  const hsize_t block = std::max<hsize_t>(1, (hsize_t(64) << 20) / std::max<std::size_t>(row_size, 1));
+  std::vector<unsigned char> buf;
+  Handle fspace{H5Dget_space(runs.dset.id), H5Sclose};
+  for (hsize_t start = 0; start < runs.rows; start += block) {
+    const hsize_t n = std::min(block, runs.rows - start);
+    buf.resize(std::size_t(n) * row_size);
+    H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &start, nullptr, &n, nullptr);
+    Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
+    if (H5Dread(runs.dset.id, native.id, mspace.id, fspace.id, H5P_DEFAULT, buf.data()) < 0)
+      h5_fail("cannot read /runs of " + path + " (rows " + std::to_string(start) + "..)");
+    for (hsize_t r = 0; r < n; ++r) {
+      const unsigned char* row = buf.data() + std::size_t(r) * row_size;
+      for (const Member& m : members) {
+        const unsigned char* p = row + m.offset;
+        if (m.cls == H5T_STRING) {
+          out.text[m.index].second.emplace_back(reinterpret_cast<const char*>(p),
+                                                strnlen(reinterpret_cast<const char*>(p), m.size));
+          continue;
+        }
+        double v;
+        if (m.cls == H5T_FLOAT && m.size == 8) {
+          std::memcpy(&v, p, 8);
+        } else if (m.cls == H5T_FLOAT) {
+          float f;
+          std::memcpy(&f, p, 4);
+          v = f;
+        } else if (m.size == 8) {
+          std::int64_t i;
+          std::memcpy(&i, p, 8);
+          v = m.is_signed ? double(i) : double(std::uint64_t(i));
+        } else {
+          std::int32_t i;
+          std::memcpy(&i, p, 4);
+          v = m.is_signed ? double(i) : double(std::uint32_t(i));
+        }
+        out.numeric[m.index].second.push_back(v);
+      }
+    }
   }
   return out;
 }

@@ -52,6 +52,16 @@ std::vector<double> read_f64_column(const std::string& path, const std::string& 
 std::vector<std::int64_t> read_i64_column(const std::string& path, const std::string& column);
 std::vector<std::string> read_text_column(const std::string& path, const std::string& column);
 std::string read_attribute(const std::string& path, const std::string& name);
+
+// Every column of /runs at once, read in blocks of whole rows (one pass over
+// the compressed chunks, however many columns): integers and floats as
+// double (integers exact up to 2^53), strings as text.
+struct StoredColumns {
+  std::size_t rows = 0;
+  std::vector<std::pair<std::string, std::vector<double>>> numeric;
+  std::vector<std::pair<std::string, std::vector<std::string>>> text;
+};
+StoredColumns read_all_columns(const std::string& path);
 std::int64_t count_rows(const std::string& path);
 std::vector<std::string> column_names(const std::string& path);
 // Names and storage types of /runs' columns, in file order (floats as f64,
