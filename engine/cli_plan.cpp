@@ -37,6 +37,18 @@ std::string preview(const Axis& axis) {
   return s;
 }
 
+// "  (7 x 3 x 8)": the sizes of a product's axes ("" when it has none).
+std::string shape_of(const std::vector<Axis>& own, const std::vector<Axis>& shared) {
+  std::string shape;
+  for (const auto* axes : {&own, &shared})
+    for (const Axis& a : *axes) shape += (shape.empty() ? "" : " x ") + std::to_string(a.size());
+  return shape.empty() ? "" : "  (" + shape + ")";
+}
+
+void print_axes(const std::vector<Axis>& axes, const std::string& indent) {
+  for (const Axis& a : axes) std::cout << indent << a.name() << ": " << a.size() << " values: " << preview(a) << "\n";
+}
+
 // ns per lane-step of this machine's kernels on (up to) 16 of the spec's own
 // runs, each cut to 2000 steps.
 double calibrate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget target) {
@@ -85,11 +97,31 @@ void add_plan_command(CLI::App& app, std::function<int()>& action) {
         return exit_bad_input;
       }
       std::cout << "sweep '" << spec.name << "'" << (spec.description.empty() ? "" : ": " + spec.description) << "\n";
-      std::string shape;
-      for (const Axis& a : spec.axes) shape += (shape.empty() ? "" : " x ") + std::to_string(a.size());
-      std::cout << "runs        " << spec.size() << (shape.empty() ? "" : "  (" + shape + ")") << "\n";
-      std::cout << "axes        (first varies slowest)\n";
-      for (const Axis& a : spec.axes) std::cout << "  " << a.name() << ": " << a.size() << " values: " << preview(a) << "\n";
+      if (spec.parts.empty()) {
+        std::cout << "runs        " << spec.size() << shape_of(spec.axes, {}) << "\n";
+        std::cout << "axes        (first varies slowest)\n";
+        print_axes(spec.axes, "  ");
+      } else {
+        std::cout << "runs        " << spec.size() << " in " << spec.parts.size() << " parts, one after the other\n";
+        std::cout << "parts       (each: its fixed settings, then its axes, first slowest"
+                  << (spec.axes.empty() ? "" : ", then the shared axes") << ")\n";
+        for (std::size_t k = 0; k < spec.parts.size(); ++k) {
+          const SpecPart& part = spec.parts[k];
+          const std::int64_t first = spec.part_offset(k), n = spec.part_size(k);
+          std::cout << "  part \"" << part.name << "\": " << n << " runs" << shape_of(part.axes, spec.axes)
+                    << ", run_id " << first << "-" << first + n - 1 << "\n";
+          if (!part.fixed.empty()) {
+            std::string f;
+            for (const auto& [key, value] : part.fixed) f += (f.empty() ? "" : " ") + key + "=" + to_text(value);
+            std::cout << "    fixed: " << f << "\n";
+          }
+          print_axes(part.axes, "    ");
+        }
+        if (!spec.axes.empty()) {
+          std::cout << "axes        shared by every part, after its own (first varies slowest)\n";
+          print_axes(spec.axes, "  ");
+        }
+      }
       const RunSpec first = spec.run(0);
       char buf[256];
       std::snprintf(buf, sizeof buf, "first run   env %s, %g x %g m, sr %g m, planner %s, variant %s\n", first.env.c_str(),

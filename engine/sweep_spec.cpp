@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -158,10 +159,41 @@ std::string Axis::name() const {
   return s + ")";
 }
 
-std::int64_t SweepSpec::size() const {
+std::int64_t SpecPart::own_size() const {
   std::int64_t n = 1;
   for (const Axis& a : axes) n *= std::int64_t(a.size());
   return n;
+}
+
+std::int64_t SweepSpec::shared_size() const {
+  std::int64_t n = 1;
+  for (const Axis& a : axes) n *= std::int64_t(a.size());
+  return n;
+}
+
+std::int64_t SweepSpec::part_size(std::size_t k) const { return parts.at(k).own_size() * shared_size(); }
+
+std::int64_t SweepSpec::part_offset(std::size_t k) const {
+  std::int64_t offset = 0;
+  for (std::size_t j = 0; j < k && j < parts.size(); ++j) offset += part_size(j);
+  return offset;
+}
+
+std::size_t SweepSpec::part_of(std::int64_t run_id) const {
+  const std::int64_t shared = shared_size();
+  std::int64_t first = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    first += parts[k].own_size() * shared;
+    if (run_id < first) return k;
+  }
+  throw std::out_of_range("run_id " + std::to_string(run_id) + " is past the spec's last part");
+}
+
+std::int64_t SweepSpec::size() const {
+  if (parts.empty()) return shared_size();
+  std::int64_t n = 0;
+  for (const SpecPart& p : parts) n += p.own_size();
+  return n * shared_size();
 }
 
 std::int64_t repeat_seed(std::uint64_t master, std::int64_t run_id) {
@@ -172,15 +204,27 @@ std::int64_t repeat_seed(std::uint64_t master, std::int64_t run_id) {
 RunSpec SweepSpec::run(std::int64_t i) const {
   const std::int64_t run_id = i;
   RunSpec r = base;
+  // The axes of this run's product: its part's own (slowest), then the shared ones.
+  std::vector<const Axis*> order;
+  const SpecPart* part = nullptr;
+  if (!parts.empty()) {
+    const std::size_t k = part_of(i);
+    part = &parts[k];
+    i -= part_offset(k);
+    for (const auto& [key, value] : part->fixed) apply_setting(r, key, value);
+    for (const Axis& a : part->axes) order.push_back(&a);
+  }
+  for (const Axis& a : axes) order.push_back(&a);
   // Mixed radix, last axis fastest; each axis sets its keys in order.
-  std::vector<std::size_t> pos(axes.size());
-  for (std::size_t k = axes.size(); k-- > 0;) {
-    const auto n = std::int64_t(axes[k].size());
+  std::vector<std::size_t> pos(order.size());
+  for (std::size_t k = order.size(); k-- > 0;) {
+    const auto n = std::int64_t(order[k]->size());
     pos[k] = std::size_t(i % n);
     i /= n;
   }
-  for (std::size_t k = 0; k < axes.size(); ++k)
-    for (const auto& [key, value] : axes[k].values[pos[k]]) apply_setting(r, key, value);
+  for (std::size_t k = 0; k < order.size(); ++k)
+    for (const auto& [key, value] : order[k]->values[pos[k]]) apply_setting(r, key, value);
+  if (part && r.label.empty()) r.label = part->name;
   if (repeat) r.params.seed = repeat_seed(master_seed, run_id);
   return r;
 }
@@ -200,6 +244,27 @@ std::vector<SpecValue> axis_values(const toml::node& node, const std::string& wh
   }
   if (values.empty()) fail(where, "is empty: an axis needs at least one value");
   return values;
+}
+
+// Where a key is set, for the message when it is set a second time.
+struct KeyUse {
+  std::string origin;    // "fixed.sr", "axes.c", "zip[0]", "part[1].case", ...
+  bool axis = false;     // set by an axis (not a fixed setting)
+  bool in_part = false;  // set inside a [[part]]
+};
+using UsedKeys = std::map<std::string, KeyUse>;
+
+// Records that `key` is set at `use`; a key set twice is an error at `where`.
+void claim(UsedKeys& used, const std::string& key, const KeyUse& use, const std::string& where) {
+  const auto it = used.find(key);
+  if (it == used.end()) {
+    used.emplace(key, use);
+    return;
+  }
+  const KeyUse& first = it->second;
+  if (use.in_part && first.axis && !first.in_part)
+    fail(where, "is a top-level axis (" + first.origin + "), which applies to every part; a part must not set it");
+  fail(where, "is also set in " + first.origin + "; give it in one place");
 }
 
 // Checks every value of an axis now, so a bad value fails before any run.
@@ -222,7 +287,7 @@ void check_axis(const Axis& axis, const RunSpec& base, const std::string& where)
 // [sample]: n points, Latin-hypercube ("lhs": each range cut into n equal
 // strata, one point per stratum, strata paired by seeded permutations) or
 // independent uniform ("random"); a list draws one of its values. One axis.
-Axis parse_sample(const toml::table& t, const std::string& where, std::set<std::string>& used) {
+Axis parse_sample(const toml::table& t, const std::string& where, const KeyUse& use, UsedKeys& used) {
   std::string method = "lhs";
   std::int64_t n = 0;
   std::uint64_t seed = 0;
@@ -245,8 +310,7 @@ Axis parse_sample(const toml::table& t, const std::string& where, std::set<std::
       if (key == "n") n = std::int64_t(*v);
       else seed = std::uint64_t(*v);
     } else {
-      if (used.count(key)) fail(where + "." + key, "is also in [fixed] or another axis; give it in one place");
-      used.insert(key);
+      claim(used, key, use, where + "." + key);
       Dim d;
       d.key = key;
       if (const toml::table* r = node.as_table()) {
@@ -309,85 +373,37 @@ std::string read_text(const std::string& path, const std::string& what) {
 
 }  // namespace
 
-SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name, const std::string& dir) {
-  toml::table root = parse_toml(text, source_name);
-  SweepSpec spec;
-  for (auto&& [k, node] : root) {
-    const std::string key(k.str());
-    if (key == "zip") {
-      if (!node.is_array_of_tables()) fail(source_name, "'zip' must be written as [[zip]] tables");
-    } else if (key == "case") {
-      if (!node.is_array_of_tables()) fail(source_name, "'case' must be written as [[case]] tables");
-    } else if (key != "sweep" && key != "fixed" && key != "axes" && key != "sample" && key != "repeat") {
-      fail(source_name,
-           "unknown section '" + key + "' (allowed: [sweep], [fixed], [axes], [[zip]], [[case]], [sample], [repeat])");
-    } else if (!node.is_table()) {
-      fail(source_name, "'" + key + "' must be a table");
-    }
-  }
-  if (const toml::table* s = root["sweep"].as_table()) {
-    for (auto&& [k, node] : *s) {
-      const std::string key(k.str());
-      if (key == "name" || key == "description" || key == "extends") {
-        if (!node.is_string()) fail(source_name, "sweep." + key + " must be a string");
-      } else {
-        fail(source_name, "unknown key 'sweep." + key + "' (allowed: name, description, extends)");
-      }
-    }
-    if (auto n = (*s)["name"].value<std::string>()) spec.name = *n;
-    if (auto d = (*s)["description"].value<std::string>()) spec.description = *d;
-    if (auto e = (*s)["extends"].value<std::string>()) {
-      // Start from another spec: its fixed settings and axes come first.
-      const std::string path = e->starts_with("/") ? *e : dir + "/" + *e;
-      const std::string parent_text = read_text(path, "the spec named by sweep.extends");
-      const auto slash = path.find_last_of('/');
-      SweepSpec parent = parse_sweep_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash));
-      spec.base = parent.base;
-      spec.axes = parent.axes;
-      if (spec.description.empty()) spec.description = parent.description;
-      spec.text = "# --- extends " + *e + " ---\n" + parent.text + "# --- " + source_name + " ---\n";
-    }
-  }
-  spec.text += text;
-  std::set<std::string> used;  // keys already given an axis
-  for (const Axis& a : spec.axes) used.insert(a.keys.begin(), a.keys.end());
+namespace {
 
-  if (const toml::table* f = root["fixed"].as_table()) {
-    for (auto&& [k, node] : *f) {
-      const std::string key(k.str());
-      const std::string where = source_name + ": fixed." + key;
-      if (used.count(key)) fail(where, "is also an axis of the extended spec");
-      try {
-        apply_setting(spec.base, key, to_value(node, where));
-      } catch (const SpecError& e) {
-        fail(where, e.what());
-      }
-    }
-    for (auto&& [k, node] : *f) used.insert(std::string(k.str()));
-  }
-  std::vector<std::pair<std::uint32_t, Axis>> ordered;
-  if (const toml::table* a = root["axes"].as_table()) {
+using OrderedAxes = std::vector<std::pair<std::uint32_t, Axis>>;
+
+// The axis sections of a table (the root or a [[part]]): [axes], [[zip]],
+// `case` and [sample], each value checked against `base`. `at` prefixes
+// locations ("spec.toml: " or "spec.toml: part[2]."), `origin` prefixes the
+// places recorded in `used` ("" or "part[2]."). Axes come with their line.
+void parse_axis_sections(const toml::table& t, const std::string& at, const std::string& origin, bool in_part,
+                         const RunSpec& base, UsedKeys& used, OrderedAxes& ordered) {
+  if (const toml::table* a = t["axes"].as_table()) {
     for (auto&& [k, node] : *a) {
       const std::string key(k.str());
-      const std::string where = source_name + ": axes." + key;
-      if (used.count(key)) fail(where, "is also in [fixed] or another axis; give it in one place");
-      used.insert(key);
+      const std::string where = at + "axes." + key;
+      claim(used, key, {origin + "axes." + key, true, in_part}, where);
       Axis axis{"axis", {key}, {}};
       for (SpecValue& v : axis_values(node, where)) axis.values.push_back({{key, std::move(v)}});
-      check_axis(axis, spec.base, where);
+      check_axis(axis, base, where);
       ordered.emplace_back(node.source().begin.line, std::move(axis));
     }
   }
-  if (const toml::array* zips = root["zip"].as_array()) {
+  if (const toml::array* zips = t["zip"].as_array()) {
     for (std::size_t z = 0; z < zips->size(); ++z) {
-      const toml::table& t = *zips->get(z)->as_table();
-      const std::string where = source_name + ": zip[" + std::to_string(z) + "]";
+      const toml::table& zt = *zips->get(z)->as_table();
+      const std::string zname = "zip[" + std::to_string(z) + "]";
+      const std::string where = at + zname;
       Axis axis{"zip", {}, {}};
       std::vector<std::pair<std::uint32_t, std::pair<std::string, std::vector<SpecValue>>>> cols;
-      for (auto&& [k, node] : t) {
+      for (auto&& [k, node] : zt) {
         const std::string key(k.str());
-        if (used.count(key)) fail(where + "." + key, "is also in [fixed] or another axis; give it in one place");
-        used.insert(key);
+        claim(used, key, {origin + zname, true, in_part}, where + "." + key);
         cols.push_back({node.source().begin.line, {key, axis_values(node, where + "." + key)}});
       }
       if (cols.empty()) fail(where, "is empty");
@@ -402,21 +418,22 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
       axis.values.resize(n);
       for (std::size_t i = 0; i < n; ++i)
         for (const auto& [line, col] : cols) axis.values[i].emplace_back(col.first, col.second[i]);
-      check_axis(axis, spec.base, where);
-      ordered.emplace_back(t.source().begin.line, std::move(axis));
+      check_axis(axis, base, where);
+      ordered.emplace_back(zt.source().begin.line, std::move(axis));
     }
   }
   // [[case]] tables: one axis whose positions are the cases, in file order.
-  if (const toml::array* cases = root["case"].as_array()) {
+  if (const toml::array* cases = t["case"].as_array()) {
     Axis axis{"case", {}, {}};
     std::set<std::string> keys;
     for (std::size_t i = 0; i < cases->size(); ++i) {
-      const toml::table& t = *cases->get(i)->as_table();
-      const std::string where = source_name + ": case[" + std::to_string(i) + "]";
+      const toml::table& ct = *cases->get(i)->as_table();
+      const std::string where = at + "case[" + std::to_string(i) + "]";
       std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::string, SpecValue>>> items;
-      for (auto&& [k, node] : t) {
+      for (auto&& [k, node] : ct) {
         const std::string key(k.str());
-        if (used.count(key)) fail(where + "." + key, "is also in [fixed] or another axis; give it in one place");
+        // Cases share their keys with one another, not with anything else.
+        if (!keys.count(key)) claim(used, key, {origin + "case", true, in_part}, where + "." + key);
         keys.insert(key);
         items.push_back({{node.source().begin.line, node.source().begin.column},
                          {key, to_value(node, where + "." + key)}});
@@ -427,17 +444,155 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
       axis.values.push_back(std::move(settings));
     }
     axis.keys.assign(keys.begin(), keys.end());
-    check_axis(axis, spec.base, source_name + ": case");
+    check_axis(axis, base, at + "case");
     if (!axis.values.empty()) ordered.emplace_back(cases->source().begin.line, std::move(axis));
   }
-  if (const toml::table* t = root["sample"].as_table()) {
-    Axis axis = parse_sample(*t, source_name + ": sample", used);
-    check_axis(axis, spec.base, source_name + ": sample");
-    ordered.emplace_back(t->source().begin.line, std::move(axis));
+  if (const toml::table* st = t["sample"].as_table()) {
+    Axis axis = parse_sample(*st, at + "sample", {origin + "sample", true, in_part}, used);
+    check_axis(axis, base, at + "sample");
+    ordered.emplace_back(st->source().begin.line, std::move(axis));
   }
+}
+
+// toml++ keeps keys sorted; restore the order the user wrote.
+std::vector<Axis> in_file_order(OrderedAxes ordered) {
+  std::stable_sort(ordered.begin(), ordered.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Axis> out;
+  for (auto& [line, axis] : ordered) out.push_back(std::move(axis));
+  return out;
+}
+
+// A [[part]]: name, fixed, axes, zip, case, sample. `used` holds the keys the
+// spec sets outside its parts; `names` the names of the parts so far.
+SpecPart parse_part(const toml::table& t, std::size_t index, const std::string& source_name, const RunSpec& base,
+                    UsedKeys used, const std::vector<std::string>& names) {
+  const std::string origin = "part[" + std::to_string(index) + "]";
+  const std::string at = source_name + ": " + origin;
+  for (auto&& [k, node] : t) {
+    const std::string key(k.str());
+    const std::string where = at + "." + key;
+    if (key == "name") {
+      if (!node.is_string() || node.value<std::string>()->empty()) fail(where, "must be a non-empty string");
+    } else if (key == "fixed" || key == "axes" || key == "sample") {
+      if (!node.is_table()) fail(where, "must be a table ([" + std::string("part.") + key + "])");
+    } else if (key == "zip" || key == "case") {
+      if (!node.is_array_of_tables()) fail(where, "must be written as [[part." + key + "]] tables");
+    } else {
+      const std::string why = key == "repeat" || key == "extends" ? "; " + key + " belongs to the whole spec"
+                              : key == "part"                     ? "; parts do not nest"
+                                                                  : "";
+      fail(at, "unknown key '" + key + "' (allowed: name, fixed, axes, zip, case, sample" + why + ")");
+    }
+  }
+  SpecPart part;
+  const auto name = t["name"].value<std::string>();
+  if (!name) fail(at, "needs a name (name = \"...\", unique among the spec's parts)");
+  part.name = *name;
+  for (std::size_t j = 0; j < names.size(); ++j)
+    if (names[j] == part.name) fail(at + ".name", "\"" + part.name + "\" is the name of an earlier part; names must be unique");
+
+  RunSpec part_base = base;
+  if (const toml::table* f = t["fixed"].as_table()) {
+    for (auto&& [k, node] : *f) {
+      const std::string key(k.str());
+      const std::string where = at + ".fixed." + key;
+      claim(used, key, {origin + ".fixed." + key, false, true}, where);
+      SpecValue v = to_value(node, where);
+      try {
+        apply_setting(part_base, key, v);
+      } catch (const SpecError& e) {
+        fail(where, e.what());
+      }
+      part.fixed.emplace_back(key, std::move(v));
+    }
+  }
+  OrderedAxes ordered;
+  parse_axis_sections(t, at + ".", origin + ".", true, part_base, used, ordered);
+  part.axes = in_file_order(std::move(ordered));
+  return part;
+}
+
+}  // namespace
+
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name, const std::string& dir) {
+  toml::table root = parse_toml(text, source_name);
+  SweepSpec spec;
+  for (auto&& [k, node] : root) {
+    const std::string key(k.str());
+    if (key == "zip" || key == "case" || key == "part") {
+      if (!node.is_array_of_tables()) fail(source_name, "'" + key + "' must be written as [[" + key + "]] tables");
+    } else if (key != "sweep" && key != "fixed" && key != "axes" && key != "sample" && key != "repeat") {
+      fail(source_name, "unknown section '" + key +
+                            "' (allowed: [sweep], [fixed], [axes], [[zip]], [[case]], [sample], [repeat], [[part]])");
+    } else if (!node.is_table()) {
+      fail(source_name, "'" + key + "' must be a table");
+    }
+  }
+  UsedKeys used;  // keys set outside parts, and where
+  // Keys the extended spec's parts set: the top level must not set them too.
+  UsedKeys inherited_part_keys;
+  if (const toml::table* s = root["sweep"].as_table()) {
+    for (auto&& [k, node] : *s) {
+      const std::string key(k.str());
+      if (key == "name" || key == "description" || key == "extends") {
+        if (!node.is_string()) fail(source_name, "sweep." + key + " must be a string");
+      } else {
+        fail(source_name, "unknown key 'sweep." + key + "' (allowed: name, description, extends)");
+      }
+    }
+    if (auto n = (*s)["name"].value<std::string>()) spec.name = *n;
+    if (auto d = (*s)["description"].value<std::string>()) spec.description = *d;
+    if (auto e = (*s)["extends"].value<std::string>()) {
+      // Start from another spec: its fixed settings, axes and parts come first.
+      const std::string path = e->starts_with("/") ? *e : dir + "/" + *e;
+      const std::string parent_text = read_text(path, "the spec named by sweep.extends");
+      const auto slash = path.find_last_of('/');
+      SweepSpec parent = parse_sweep_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash));
+      if (parent.repeat && root["repeat"]) fail(source_name + ": repeat", "the extended spec has a [repeat] already");
+      spec.base = parent.base;
+      spec.axes = parent.axes;
+      spec.parts = parent.parts;
+      spec.repeat = parent.repeat;
+      spec.master_seed = parent.master_seed;
+      for (const Axis& a : parent.axes)
+        for (const std::string& key : a.keys) used.emplace(key, KeyUse{"an axis of the extended spec", true, false});
+      for (const SpecPart& p : parent.parts) {
+        const KeyUse use{"part \"" + p.name + "\" of the extended spec", false, true};
+        for (const auto& [key, value] : p.fixed) inherited_part_keys.emplace(key, use);
+        for (const Axis& a : p.axes)
+          for (const std::string& key : a.keys) inherited_part_keys.emplace(key, use);
+      }
+      if (spec.description.empty()) spec.description = parent.description;
+      spec.text = "# --- extends " + *e + " ---\n" + parent.text + "# --- " + source_name + " ---\n";
+    }
+  }
+  spec.text += text;
+  UsedKeys top = used;  // what the top level claims, checked against the inherited parts too
+  top.insert(inherited_part_keys.begin(), inherited_part_keys.end());
+
+  if (const toml::table* f = root["fixed"].as_table()) {
+    for (auto&& [k, node] : *f) {
+      const std::string key(k.str());
+      const std::string where = source_name + ": fixed." + key;
+      if (const auto it = top.find(key); it != top.end())
+        fail(where, "is also set by " + it->second.origin + "; give it in one place");
+      try {
+        apply_setting(spec.base, key, to_value(node, where));
+      } catch (const SpecError& e) {
+        fail(where, e.what());
+      }
+    }
+    for (auto&& [k, node] : *f) {
+      const std::string key(k.str());
+      top.emplace(key, KeyUse{"fixed." + key, false, false});
+    }
+  }
+  OrderedAxes ordered;
+  parse_axis_sections(root, source_name + ": ", "", false, spec.base, top, ordered);
   if (const toml::table* t = root["repeat"].as_table()) {
     const std::string where = source_name + ": repeat";
-    if (used.count("seed")) fail(where, "sets every run's seed: 'seed' must not be given elsewhere");
+    if (top.count("seed")) fail(where, "sets every run's seed: 'seed' must not be given elsewhere");
+    top.emplace("seed", KeyUse{"repeat", true, false});
     std::int64_t count = 0;
     for (auto&& [k, node] : *t) {
       const std::string key(k.str());
@@ -453,12 +608,26 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
     Axis axis{"repeat", {"seed"}, std::vector<Settings>(std::size_t(count))};
     ordered.emplace_back(t->source().begin.line, std::move(axis));
   }
-  // toml++ keeps keys sorted; restore the order the user wrote.
-  std::stable_sort(ordered.begin(), ordered.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (auto& [line, axis] : ordered) spec.axes.push_back(std::move(axis));
+  for (Axis& a : in_file_order(std::move(ordered))) spec.axes.push_back(std::move(a));
 
-  double total = 1;
-  for (const Axis& a : spec.axes) total *= double(a.size());
+  if (const toml::array* parts = root["part"].as_array()) {
+    for (const auto& [key, use] : inherited_part_keys) top.erase(key);  // parts are independent of one another
+    std::vector<std::string> names;
+    for (const SpecPart& p : spec.parts) names.push_back(p.name);
+    for (std::size_t k = 0; k < parts->size(); ++k) {
+      spec.parts.push_back(parse_part(*parts->get(k)->as_table(), k, source_name, spec.base, top, names));
+      names.push_back(spec.parts.back().name);
+    }
+  }
+
+  double total = 0, shared = 1;
+  for (const Axis& a : spec.axes) shared *= double(a.size());
+  for (const SpecPart& p : spec.parts) {
+    double own = 1;
+    for (const Axis& a : p.axes) own *= double(a.size());
+    total += own * shared;
+  }
+  if (spec.parts.empty()) total = shared;
   if (total > max_runs) fail(source_name, "expands to " + fmt(total) + " runs (more than 1e12)");
   return spec;
 }

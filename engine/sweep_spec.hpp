@@ -2,7 +2,10 @@
 // A sweep spec (TOML): fixed settings, axes whose Cartesian product is the
 // set of runs, and zip groups (lists that advance together, e.g. the rows of
 // a paper's table). run_id = index in the expansion, the first axis varying
-// slowest, axes in file order. See README.md, "Sweep specs".
+// slowest, axes in file order. A spec may also hold [[part]] tables: each is
+// its own product (its fixed settings and axes over the spec's base, then the
+// spec's top-level axes), and the runs are the parts' runs one after the
+// other in file order. See README.md, "Sweep specs".
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -41,18 +44,36 @@ struct Axis {
   std::string name() const;  // "A", "zip(size, sr)" or "case(label, size, ...)"
 };
 
+// A [[part]]: a product of its own over the spec's base. Its runs start from
+// the base, apply `fixed`, then its axes (slowest), then the spec's top-level
+// axes; a run left without a label gets the part's name as its label.
+struct SpecPart {
+  std::string name;
+  Settings fixed;          // the part's own fixed settings
+  std::vector<Axis> axes;  // the part's own axes, in file order
+  std::int64_t own_size() const;  // product of the part's own axes (1 if none)
+};
+
 struct SweepSpec {
   std::string name;
   std::string description;
   std::string text;  // the spec as written (with any extended spec), for provenance
   RunSpec base;
+  // Without parts: the axes of the one product. With parts: the axes every
+  // part shares, varying faster than the part's own.
   std::vector<Axis> axes;
+  std::vector<SpecPart> parts;  // empty: the spec is one product
   // [repeat]: each run's `seed` = splitmix64 of (master seed, run_id).
   bool repeat = false;
   std::uint64_t master_seed = 0;
 
   std::int64_t size() const;
   RunSpec run(std::int64_t i) const;  // 0 <= i < size()
+
+  std::int64_t shared_size() const;                 // product of `axes` (1 if none)
+  std::int64_t part_size(std::size_t k) const;      // runs of parts[k]
+  std::int64_t part_offset(std::size_t k) const;    // run_id of parts[k]'s first run
+  std::size_t part_of(std::int64_t run_id) const;   // index of the part holding run_id (parts non-empty)
 };
 
 // `source_name` is used in messages; `dir` resolves `extends`.

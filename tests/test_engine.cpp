@@ -217,6 +217,173 @@ TEST(SweepSpec, ErrorsNameTheKeyAndTheAllowedRange) {
   EXPECT_NE(error_of("[fixed\n").find("line 1"), std::string::npos);
 }
 
+// Three parts over one base, with a shared seed axis (2 values) after each part's own axes.
+const char* parts_spec = R"(
+[fixed]
+size = 12
+sr = 1
+max_time = 3000
+[axes]
+seed = [0, 1]
+
+[[part]]
+name = "original"
+[part.axes]
+ds_index = [1, 2, 3]
+
+[[part]]
+name = "zoning"
+case = [ { label = "z1", c = 0.5 }, { c = 0.75 } ]
+[part.fixed]
+map_zoning = 1
+[part.axes]
+f = [1, 2]
+
+[[part]]
+name = "logistic"
+fixed = { planner = "logistic" }
+)";
+
+TEST(SweepSpecParts, SizesAddUpAndRunIdsFollowThePartsInFileOrder) {
+  const SweepSpec s = parse_sweep_spec(parts_spec, "spec.toml");
+  ASSERT_EQ(s.parts.size(), 3u);
+  EXPECT_EQ(s.parts[0].name, "original");
+  EXPECT_EQ(s.parts[2].name, "logistic");
+  EXPECT_EQ(s.part_size(0), 3 * 2);
+  EXPECT_EQ(s.part_size(1), 2 * 2 * 2);
+  EXPECT_EQ(s.part_size(2), 1 * 2);  // no axes of its own: one point, times the shared axes
+  EXPECT_EQ(s.size(), 6 + 8 + 2);
+  EXPECT_EQ(s.part_offset(1), 6);
+  EXPECT_EQ(s.part_offset(2), 14);
+  EXPECT_EQ(s.part_of(0), 0u);
+  EXPECT_EQ(s.part_of(5), 0u);
+  EXPECT_EQ(s.part_of(6), 1u);
+  EXPECT_EQ(s.part_of(15), 2u);
+  EXPECT_THROW(s.part_of(16), std::out_of_range);
+}
+
+TEST(SweepSpecParts, FirstAndLastRunOfEachPartHaveThatPartsSettings) {
+  const SweepSpec s = parse_sweep_spec(parts_spec, "spec.toml");
+  // Part 0: ds_index slowest, then the shared seed.
+  RunSpec r = s.run(0);
+  EXPECT_EQ(r.params.ds_index, 1);
+  EXPECT_EQ(r.params.seed, 0);
+  EXPECT_EQ(r.params.map_zoning, 0);
+  EXPECT_EQ(r.params.size_x, 12.0);  // every part starts from the top-level base
+  r = s.run(5);
+  EXPECT_EQ(r.params.ds_index, 3);
+  EXPECT_EQ(r.params.seed, 1);
+  // Part 1: its fixed settings, then case (slowest), f, seed.
+  r = s.run(6);
+  EXPECT_EQ(r.params.map_zoning, 1);
+  EXPECT_EQ(r.params.c, 0.5);
+  EXPECT_EQ(r.params.f, 1.0);
+  EXPECT_EQ(r.params.seed, 0);
+  EXPECT_EQ(r.params.ds_index, RunParams{}.ds_index);  // part 0's axis does not leak
+  r = s.run(13);
+  EXPECT_EQ(r.params.map_zoning, 1);
+  EXPECT_EQ(r.params.c, 0.75);
+  EXPECT_EQ(r.params.f, 2.0);
+  EXPECT_EQ(r.params.seed, 1);
+  // Part 2: fixed only.
+  r = s.run(14);
+  EXPECT_EQ(r.params.planner, Planner::logistic);
+  EXPECT_EQ(r.params.seed, 0);
+  EXPECT_EQ(r.params.map_zoning, 0);  // part 1's fixed setting does not leak
+  r = s.run(15);
+  EXPECT_EQ(r.params.planner, Planner::logistic);
+  EXPECT_EQ(r.params.seed, 1);
+  EXPECT_EQ(s.text, parts_spec);  // provenance is the whole file
+}
+
+TEST(SweepSpecParts, TopLevelAxesVaryFastestInEveryPart) {
+  const SweepSpec s = parse_sweep_spec(parts_spec, "spec.toml");
+  for (std::size_t k = 0; k < s.parts.size(); ++k) {
+    const std::int64_t first = s.part_offset(k);
+    for (std::int64_t i = first; i < first + s.part_size(k); ++i) EXPECT_EQ(s.run(i).params.seed, (i - first) % 2);
+  }
+  // [repeat] seeds follow the global run_id, across parts.
+  const SweepSpec r = parse_sweep_spec(
+      "[repeat]\ncount = 3\nseed = 5\n[[part]]\nname = \"a\"\naxes = { A = [0.4, 0.5] }\n"
+      "[[part]]\nname = \"b\"\n",
+      "spec.toml");
+  ASSERT_EQ(r.size(), 2 * 3 + 3);
+  for (std::int64_t i = 0; i < r.size(); ++i) EXPECT_EQ(r.run(i).params.seed, repeat_seed(5, i));
+  EXPECT_EQ(r.run(5).params.A, 0.5);
+  EXPECT_EQ(r.run(6).label, "b");
+}
+
+TEST(SweepSpecParts, LabelDefaultsToThePartNameUnlessTheSpecGivesOne) {
+  const SweepSpec s = parse_sweep_spec(parts_spec, "spec.toml");
+  EXPECT_EQ(s.run(0).label, "original");
+  EXPECT_EQ(s.run(6).label, "z1");       // a case's label wins
+  EXPECT_EQ(s.run(10).label, "zoning");  // the case without one gets the part's name
+  EXPECT_EQ(s.run(15).label, "logistic");
+  const SweepSpec f = parse_sweep_spec("[fixed]\nlabel = \"all\"\n[[part]]\nname = \"p\"\n", "x");
+  EXPECT_EQ(f.run(0).label, "all");  // so does a fixed label
+  const SweepSpec g = parse_sweep_spec("[[part]]\nname = \"p\"\nfixed = { label = \"mine\" }\n", "x");
+  EXPECT_EQ(g.run(0).label, "mine");
+}
+
+TEST(SweepSpecParts, BadPartsFailNamingTheLocation) {
+  const std::string part = "[[part]]\nname = \"a\"\n";
+  // A key set twice: top-level fixed and part, or twice in one part.
+  EXPECT_NE(error_of("[fixed]\nsr = 2\n" + part + "[part.fixed]\nsr = 1\n").find("spec.toml: part[0].fixed.sr: is also set in fixed.sr"),
+            std::string::npos);
+  EXPECT_NE(error_of("[fixed]\nsr = 2\n" + part + "[part.axes]\nsr = [1, 2]\n").find("part[0].axes.sr"), std::string::npos);
+  EXPECT_NE(error_of(part + "[part.fixed]\nc = 0.5\n[part.axes]\nc = [0.1]\n").find("part[0].axes.c: is also set in part[0].fixed.c"),
+            std::string::npos);
+  EXPECT_NE(error_of(part + "[part.axes]\nc = [0.1]\n[[part.zip]]\nc = [0.2]\n").find("one place"), std::string::npos);
+  // The same key in two parts is fine: each part is its own product.
+  EXPECT_EQ(error_of(part + "axes = { c = [0.1] }\n[[part]]\nname = \"b\"\naxes = { c = [0.2, 0.3] }\n"), "");
+  // Unknown keys, values, a missing or repeated name.
+  const std::string unknown = error_of(part + "[part.repeat]\ncount = 2\n");
+  EXPECT_NE(unknown.find("spec.toml: part[0]: unknown key 'repeat'"), std::string::npos);
+  EXPECT_NE(unknown.find("allowed: name, fixed, axes, zip, case, sample"), std::string::npos);
+  EXPECT_NE(error_of(part + "extends = \"x.toml\"\n").find("unknown key 'extends'"), std::string::npos);
+  EXPECT_NE(error_of(part + "[[part.part]]\nname = \"b\"\n").find("parts do not nest"), std::string::npos);
+  EXPECT_NE(error_of(part + "[[part]]\nname = \"b\"\n[part.axes]\nsr = [0.5, 0]\n").find("spec.toml: part[1].axes.sr[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of(part + "[part.axes]\nfoo = [1]\n").find("part[0].axes.foo[0]: unknown key 'foo'"), std::string::npos);
+  EXPECT_NE(error_of(part + "case = [ { sr = 1 }, { sr = -1 } ]\n").find("part[0].case[1].sr"), std::string::npos);
+  EXPECT_NE(error_of("[[part]]\naxes = { c = [0.1] }\n").find("spec.toml: part[0]: needs a name"), std::string::npos);
+  EXPECT_NE(error_of(part + part).find("spec.toml: part[1].name"), std::string::npos);
+  EXPECT_NE(error_of("part = 3\n").find("[[part]] tables"), std::string::npos);
+}
+
+TEST(SweepSpecParts, APartMustNotSetAKeyOfATopLevelAxis) {
+  const std::string part = "[[part]]\nname = \"a\"\n";
+  const std::string e = error_of("[axes]\nseed = [0, 1]\n" + part + "[part.axes]\nseed = [3]\n");
+  EXPECT_NE(e.find("spec.toml: part[0].axes.seed: is a top-level axis (axes.seed)"), std::string::npos) << e;
+  EXPECT_NE(error_of("[axes]\nseed = [0, 1]\n" + part + "[part.fixed]\nseed = 3\n").find("top-level axis"),
+            std::string::npos);
+  EXPECT_NE(error_of("case = [ { c = 0.1 } ]\n" + part + "[part.axes]\nc = [0.5]\n").find("top-level axis (case)"),
+            std::string::npos);
+  EXPECT_NE(error_of("[repeat]\ncount = 2\n" + part + "[part.axes]\nseed = [1, 2]\n").find("top-level axis (repeat)"),
+            std::string::npos);
+}
+
+TEST(SweepSpecParts, ExtendingASpecKeepsItsPartsAndAppendsNewOnes) {
+  TempDir tmp;
+  write_file(tmp.file("base.toml"),
+             "[fixed]\nsr = 4\nsize = 20\n[[part]]\nname = \"a\"\naxes = { A = [0.4, 0.5] }\n");
+  write_file(tmp.file("more.toml"),
+             "[sweep]\nextends = \"base.toml\"\n[fixed]\nsr = 2\n[axes]\nseed = [0, 1, 2]\n"
+             "[[part]]\nname = \"b\"\nfixed = { A = 0.6 }\n");
+  const SweepSpec s = load_sweep_spec(tmp.file("more.toml"));
+  ASSERT_EQ(s.parts.size(), 2u);
+  EXPECT_EQ(s.size(), 2 * 3 + 3);
+  EXPECT_EQ(s.run(5).params.A, 0.5);
+  EXPECT_EQ(s.run(5).params.seed, 2);
+  EXPECT_EQ(s.run(5).params.sr, 2.0);  // the extending spec's base holds for the inherited parts
+  EXPECT_EQ(s.run(8).params.A, 0.6);
+  EXPECT_EQ(s.run(8).label, "b");
+  write_file(tmp.file("clash.toml"), "[sweep]\nextends = \"base.toml\"\n[fixed]\nA = 0.3\n");
+  EXPECT_THROW(load_sweep_spec(tmp.file("clash.toml")), SpecError);
+  write_file(tmp.file("twice.toml"), "[sweep]\nextends = \"base.toml\"\n[[part]]\nname = \"a\"\n");
+  EXPECT_THROW(load_sweep_spec(tmp.file("twice.toml")), SpecError);
+}
+
 TEST(SweepSpec, DemoSpecIsAFewHundredRunsOfTheOriginalPlanner) {
   const SweepSpec s = load_sweep_spec(std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml");
   EXPECT_EQ(s.name, "demo");
@@ -287,6 +454,26 @@ TEST(SweepRunner, RowsDoNotDependOnThreadsOrBatches) {
   int ok = 0;
   for (const RunRow& r : a) ok += r.result.status == Status::ok;
   EXPECT_GT(ok, 0);
+}
+
+TEST(SweepRunner, ShardsOfASpecWithPartsTileItsRunIds) {
+  const SweepSpec s = parse_sweep_spec(parts_spec, "spec.toml");
+  SweepOptions all, shard;
+  shard.shard_index = 1;
+  shard.shard_count = 3;
+  const auto a = run_sweep_rows(s, all), b = run_sweep_rows(s, shard);
+  ASSERT_EQ(a.size(), std::size_t(s.size()));
+  for (const RunRow& r : a) {
+    const RunSpec want = s.run(r.tuple.run_id);
+    EXPECT_EQ(r.tuple.label, want.label);
+    EXPECT_EQ(r.tuple.params.planner, want.params.planner);
+    EXPECT_EQ(r.tuple.params.c, want.params.c);
+  }
+  ASSERT_EQ(b.size(), std::size_t(shard_size(s.size(), 1, 3)));
+  std::vector<RunRow> expected;
+  for (std::size_t j = 0; j < b.size(); ++j) expected.push_back(a[std::size_t(shard_run_id(std::int64_t(j), 1, 3))]);
+  std::string diff;
+  EXPECT_TRUE(same_rows(expected, b, diff)) << diff;
 }
 
 TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
