@@ -188,7 +188,7 @@ void render(const MapPlot& p, const std::string& path, ImageSize size) {
   for (const auto& [x, y] : p.zone_midpoints) gr.Mark(mglPoint(x, y, 0.6), "m+");
   gr.Mark(mglPoint(p.start.first, p.start.second, 0.7), "g#o");
   gr.Mark(mglPoint(p.end.first, p.end.second, 0.7), "r#s");
-  gr.AddLegend("Arnold path", "b");
+  gr.AddLegend("path", "b");
   if (!p.transit_paths.empty()) gr.AddLegend("transit", "r2");
   if (!p.zone_midpoints.empty()) gr.AddLegend("zone midpoint", "m+");
   gr.AddLegend("start", "g#o");

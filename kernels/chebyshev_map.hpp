@@ -7,9 +7,9 @@
 #include <cmath>
 #include <numbers>
 
-namespace chaosweep {
+#include "run_params.hpp"  // ChebTransform
 
-enum class ChebTransform { none, arcsine, arccosine };
+namespace chaosweep {
 
 // One iteration; the argument is clamped into [-1, 1] so rounding at the
 // ends (|x| = 1 + ulp) never produces NaN.

@@ -31,8 +31,9 @@ using Kind = ParamInfo::Kind;
 
 std::vector<ParamInfo> make_table() {
   std::vector<ParamInfo> t = {
-      CW_CHOICE(planner, Planner, "planner: Arnold flow (with the switches below) or Logistic map only",
-                "arnold", "logistic"),
+      CW_CHOICE(planner, Planner,
+                "planner: Arnold flow (with the switches below), Logistic map only, or Chebyshev map (seed 001)",
+                "arnold", "logistic", "chebyshev"),
       CW_INT(index_switching, 0, 1, "orientation control: 1 switches DSindex when coverage stalls"),
       CW_INT(switch_min_new, 0, 1e9, "a segment adding at most this many cells counts as stalled"),
       CW_INT(map_zoning, 0, 1, "map zoning: 1 runs MapZoning when Eq. 5 fails"),
@@ -48,6 +49,15 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(dt_c, 1e-6, 10, false, "transit / Logistic step, s"),
       CW_REAL(logistic_r, 0, 4, false, "Logistic map parameter r"),
       CW_REAL(logistic_x0, 0, 1, false, "Logistic map initial state"),
+      CW_INT(cheb_k, 2, 1000, "Chebyshev map order k"),
+      CW_REAL(cheb_x0, -1, 1, false, "Chebyshev map initial value of the X map"),
+      CW_REAL(cheb_y0, -1, 1, false, "Chebyshev map initial value of the Y map"),
+      CW_CHOICE(cheb_transform, ChebTransform, "transform of the Chebyshev orbit before mapping (Eqs. 4-5)",
+                "none", "arcsine", "arccosine"),
+      CW_REAL(radius, 0, 1e3, false, "Chebyshev robot radius, m (edge expansion)"),
+      CW_REAL(step, 1e-4, 1e3, false, "Chebyshev robot step between interpolated points, m"),
+      CW_INT(loop_subgoals, 1, 1e9, "Chebyshev sub-goals per large loop (split over the rectangles by area)"),
+      CW_INT(max_subgoals, 0, 9.007199254740992e15, "end a Chebyshev run after this many sub-goals (0: no limit)"),
       CW_REAL(ic_jitter, 0, 1, false, "perturb ic uniformly in +-ic_jitter (seeded by seed)"),
       CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
       CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
@@ -139,6 +149,7 @@ std::string check_ranges(const RunParams& p) {
 
 std::string variant_name(const RunParams& p) {
   if (p.planner == Planner::logistic) return "logistic";
+  if (p.planner == Planner::chebyshev) return "chebyshev";
   std::string s;
   auto add = [&](const char* part) {
     if (!s.empty()) s += '+';
@@ -150,7 +161,22 @@ std::string variant_name(const RunParams& p) {
   return s.empty() ? "original" : s;
 }
 
-const char* to_string(Planner v) { return v == Planner::arnold ? "arnold" : "logistic"; }
+const char* to_string(Planner v) {
+  switch (v) {
+    case Planner::arnold: return "arnold";
+    case Planner::logistic: return "logistic";
+    case Planner::chebyshev: return "chebyshev";
+  }
+  return "?";
+}
+const char* to_string(ChebTransform v) {
+  switch (v) {
+    case ChebTransform::none: return "none";
+    case ChebTransform::arcsine: return "arcsine";
+    case ChebTransform::arccosine: return "arccosine";
+  }
+  return "?";
+}
 const char* to_string(Boundary v) { return v == Boundary::mirror ? "mirror" : "fold"; }
 const char* to_string(Integrator v) { return v == Integrator::rk4 ? "rk4" : "rk4-doubling"; }
 const char* to_string(Sampling v) { return v == Sampling::segments ? "segments" : "points"; }
@@ -160,6 +186,8 @@ const char* to_string(SegmentKind v) {
     case SegmentKind::arnold: return "arnold";
     case SegmentKind::transit: return "transit";
     case SegmentKind::logistic: return "logistic";
+    case SegmentKind::chebyshev: return "chebyshev";
+    case SegmentKind::subgoal: return "subgoal";
   }
   return "?";
 }

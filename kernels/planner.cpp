@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "chebyshev_run.hpp"
 #include "planner_run.hpp"
 #include "coverage_grid.hpp"
 #include "metrics.hpp"
@@ -34,6 +35,7 @@ std::string validate_run(const RunParams& p, const Environment& env) {
   if (int k = env.obstacle_at(p.start_x, p.start_y); k >= 0)
     return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") lies inside obstacle #" +
            std::to_string(k) + " of environment '" + env.name + "'";
+  if (p.planner == Planner::chebyshev) return validate_chebyshev(p, env);
   return {};
 }
 
@@ -68,7 +70,8 @@ RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* tra
   RunResult r;
   std::optional<CoverageGrid> grid;
   if (!prepare_run(p, env, grid, r)) return r;
-  PlannerRun(p, env, *grid, r, trace).run();
+  if (p.planner == Planner::chebyshev) run_chebyshev(p, env, *grid, r, trace);
+  else PlannerRun(p, env, *grid, r, trace).run();
   conclude_run(*grid, r);
   return r;
 }

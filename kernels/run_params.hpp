@@ -7,12 +7,14 @@
 
 namespace chaosweep {
 
-enum class Planner { arnold, logistic };
+enum class Planner { arnold, logistic, chebyshev };
 enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
 enum class ZoneGoal { free_cell, midpoint };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
+// Seed 001: how the Chebyshev orbit is flattened before it becomes a sub-goal.
+enum class ChebTransform { none, arcsine, arccosine };
 
 inline constexpr double unset = std::numeric_limits<double>::quiet_NaN();
 
@@ -52,6 +54,17 @@ struct RunParams {
   double dt_c = 0.1;        // transit / Logistic step, s
   double logistic_r = 4.0, logistic_x0 = 0.1;
 
+  // Chebyshev planner (seed 001): two maps of order cheb_k from cheb_x0 and
+  // cheb_y0 give sub-goals in the free rectangles (Eqs. 9-11); the robot, a
+  // disc of `radius`, walks straight to each in steps of `step`.
+  int cheb_k = 6;
+  double cheb_x0 = 0.1, cheb_y0 = 0.10001;
+  ChebTransform cheb_transform = ChebTransform::arcsine;
+  double radius = 0.1;
+  double step = 0.125;
+  int loop_subgoals = 200;        // sub-goals per large loop, split over the rectangles by area
+  std::int64_t max_subgoals = 0;  // end the run after this many sub-goals (0: no limit)
+
   // Chaotic spread (SPEC 1): ic perturbed uniformly in +-ic_jitter per
   // coordinate, drawn from `seed`.
   double ic_jitter = 0.0;
@@ -70,7 +83,7 @@ struct RunResult {
   std::int64_t visited_cells = 0;
   std::int64_t dt_halvings = 0;  // step-doubling halvings
   double final_x = unset, final_y = unset;
-  std::int64_t segments = 0;        // Arnold / Logistic segments run
+  std::int64_t segments = 0;        // Arnold / Logistic segments run; Chebyshev large loops
   std::int64_t index_switches = 0;
   std::int64_t zonings = 0;         // MapZoning calls
   std::int64_t transits = 0;        // transits that reached their zone midpoint
@@ -78,6 +91,7 @@ struct RunResult {
   std::int64_t transit_points = 0;  // mapped points walked on transits
   std::int64_t transit_attempts = 0;  // transit points pushed out of an obstacle (Eq. 8)
   int final_ds_index = 0;
+  std::int64_t subgoals = 0;        // Chebyshev sub-goals reached
   double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
   std::string message;           // why a run is invalid / errored
 };
@@ -90,6 +104,7 @@ const char* to_string(Planner);
 const char* to_string(Boundary);
 const char* to_string(Integrator);
 const char* to_string(Sampling);
+const char* to_string(ChebTransform);
 const char* to_string(Status);
 
 }  // namespace chaosweep

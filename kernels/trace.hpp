@@ -3,7 +3,9 @@
 // The kernels call it; they never know where the points go.
 namespace chaosweep {
 
-enum class SegmentKind { start, arnold, transit, logistic };
+// chebyshev: a point on the way to a sub-goal inside a coverage rectangle;
+// subgoal: the sub-goal itself; transit: a point in a transition rectangle.
+enum class SegmentKind { start, arnold, transit, logistic, chebyshev, subgoal };
 const char* to_string(SegmentKind);
 
 struct TracePoint {
