@@ -76,9 +76,14 @@ class ChebyshevRun {
   }
 
   // Iterates the maps once and returns the sub-goal in `box` (Eq. 11).
+  // An orbit that lands on a fixed point (x0 = 0.5 at k = 6 reaches 1 in one
+  // step; rounding can do it anywhere) repeats one sub-goal forever: the run
+  // ends as diverged, like the Logistic planner's.
   std::pair<double, double> next_subgoal(const Rect& box) {
+    const double px = x_, py = y_;
     x_ = chebyshev_step(x_, p_.cheb_k);
     y_ = chebyshev_step(y_, p_.cheb_k);
+    if (x_ == px || y_ == py) end(Status::diverged, "Chebyshev orbit collapsed onto a fixed point");
     const double lo = cheb_lo(p_.cheb_transform), span = cheb_hi(p_.cheb_transform) - lo;
     const double u = (cheb_transform(x_, p_.cheb_transform) - lo) / span;
     const double w = (cheb_transform(y_, p_.cheb_transform) - lo) / span;
@@ -87,7 +92,7 @@ class ChebyshevRun {
 
   void subgoal_in(const Rect& box, SegmentKind kind) {
     const auto [gx, gy] = next_subgoal(box);
-    walk_to(gx, gy, kind);
+    if (!ended_) walk_to(gx, gy, kind);
   }
 
   // Sub-goals in `box` until one lies in `target` (walking to each).
@@ -95,6 +100,7 @@ class ChebyshevRun {
     for (long tries = 0; !ended_; ++tries) {
       if (tries == max_tries) return end(Status::stuck, "no sub-goal reached the next rectangle");
       const auto [gx, gy] = next_subgoal(box);
+      if (ended_) return;
       walk_to(gx, gy, kind);
       if (contains(target, gx, gy)) return;
     }

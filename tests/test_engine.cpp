@@ -492,7 +492,7 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
 
 TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries, obstacles, the scalar-only paths
-  // (step doubling, Logistic), a run outside small-shift mode (dt = 0.5) and
+  // (step doubling, Logistic, Chebyshev), a run outside small-shift mode (dt = 0.5) and
   // an invalid run, mixed in one batch.
   const SweepSpec s = parse_sweep_spec(R"(
 case = [
@@ -504,6 +504,7 @@ case = [
   { label = "jitter", ic_jitter = 1e-6, seed = 3 },
   { label = "doubling", integrator = "rk4-doubling" },
   { label = "logistic", planner = "logistic" },
+  { label = "chebyshev", planner = "chebyshev", env = "one_square", start = [1, 8] },
   { label = "invalid", env = "one_square", start = [8, 8] },
   { label = "points", sampling = "points", f = 4 },
   { label = "full-trig", dt = 0.5 },
