@@ -22,6 +22,9 @@ struct TableOptions {
 // summary: per group, runs, ok rate and CT quantiles.
 TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt);
 const std::vector<std::string>& table_names();
+// seed001: the Chebyshev map's own numbers (Lyapunov exponents, v(xy)) beside
+// seed 001's; computed, so it reads no result file.
+bool table_needs_results(const std::string& name);
 
 // A parameter tuple's score: the median coverage time of its runs, a run
 // that did not reach the target counting as infinitely long (so a tuple

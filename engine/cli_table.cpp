@@ -21,6 +21,8 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
       "  best     the --top K parameter tuples per --by group, by median CT (timeouts count as\n"
       "           infinite); parameters: --params, else those that vary\n"
       "  summary  per --by group (default: variant): runs, ok rate, CT quantiles, median PR\n"
+      "  seed001  seed 001's Chebyshev-map numbers (Lyapunov exponents, v(xy)) beside ours;\n"
+      "           computed, no result file\n"
       "Example: chaosweep table best out/fig6/results.h5 --top 10");
   struct Opts {
     std::string name, format = "md", out, by, params;
@@ -29,7 +31,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("name", o->name, "table1, best or summary")->required();
-  cmd->add_option("results", o->files, "result files (.h5)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("results", o->files, "result files (.h5); none for seed001")->check(CLI::ExistingFile);
   cmd->add_option("--format", o->format, "md, csv or tex")->capture_default_str();
   cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
   cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary)");
@@ -42,7 +44,9 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
         const TableFormat f = parse_table_format(o->format);
         o->table.by = split_list(o->by);
         o->table.params = split_list(o->params);
-        const TextTable t = make_table(o->name, ResultSet::load(o->files), o->table);
+        const bool needs = table_needs_results(o->name);
+        if (needs && o->files.empty()) throw AnalysisError("give one or more result files (.h5)");
+        const TextTable t = make_table(o->name, needs ? ResultSet::load(o->files) : ResultSet{}, o->table);
         if (o->out.empty()) {
           t.write(std::cout, f);
           return exit_ok;
