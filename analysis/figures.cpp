@@ -9,6 +9,7 @@
 
 #include "grouping.hpp"
 #include "param_table.hpp"
+#include "rect_decomposition.hpp"
 #include "replay.hpp"
 #include "tables.hpp"
 #include "text_table.hpp"
@@ -202,17 +203,24 @@ FigureOutput trajectory(const ResultSet& rs, const FigureOptions& opt, const std
   const RunParams& p = rp.tuple.params;
   MapPlot m;
   m.title = "Run " + rs.cell("run_id", r) + ": " + rs.text("variant")[r] + ", " + to_string(rp.result.status) +
-            (std::isnan(rp.result.coverage_time) ? "" : ", CT " + fmt_sig(rp.result.coverage_time, 6) + " s") +
-            ", coverage " + fmt_fixed(100.0 * rp.grid.coverage(), 1) + "%";
+            (std::isnan(rp.result.coverage_time) ? "" : ", CT " + fmt_sig(rp.result.coverage_time, 5) + " s") +
+            ", " + fmt_fixed(100.0 * rp.grid.coverage(), 1) + "% covered";
   m.lx = env.lx, m.ly = env.ly;
   m.cell = rp.grid.cell_size();
   m.nx = rp.grid.nx(), m.ny = rp.grid.ny();
   for (int j = 0; j < m.ny; ++j)
     for (int i = 0; i < m.nx; ++i) m.covered.push_back(rp.grid.at(i, j) == CoverageGrid::visited);
   for (const Rect& o : env.obstacles) m.obstacles.push_back({o.x0, o.y0, o.x1, o.y1});
-  if (p.map_zoning) {
+  if (p.map_zoning && p.planner == Planner::arnold) {
     const Zones zones(env, rp.grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo);
     for (const ZoneInfo& z : zones.snapshot(rp.grid)) m.zone_midpoints.emplace_back(z.mid_x, z.mid_y);
+  }
+  if (p.planner == Planner::chebyshev) {
+    const RectDecomposition d = decompose_free_space(env, p.radius);
+    for (const auto& reg : d.regions) m.regions.push_back({reg.box.x0, reg.box.y0, reg.box.x1, reg.box.y1});
+    for (const auto& t : d.transitions) m.transitions.push_back({t.box.x0, t.box.y0, t.box.x1, t.box.y1});
+    for (const TracePoint& q : rp.points)
+      if (q.kind == SegmentKind::subgoal) m.subgoals.emplace_back(q.x, q.y);
   }
   // Paths split where the kind changes; each piece keeps its first point's
   // predecessor so the pieces join up. Long runs are thinned for drawing
@@ -220,17 +228,18 @@ FigureOutput trajectory(const ResultSet& rs, const FigureOptions& opt, const std
   const std::size_t stride = std::max<std::size_t>(1, rp.points.size() / 200000);
   TextTable csv;
   csv.header = {"t", "x", "y", "kind", "ds_index", "visited_cells"};
-  SegmentKind kind = SegmentKind::start;
+  bool in_transit = false;  // the class of the current piece: transit or not
   for (std::size_t i = 0; i < rp.points.size(); ++i) {
     const TracePoint& q = rp.points[i];
     csv.add_row({format_number(q.t), format_number(q.x), format_number(q.y), to_string(q.kind),
                  std::to_string(q.ds_index), std::to_string(rp.visited[i])});
     if (q.kind == SegmentKind::start) continue;
-    auto& paths = q.kind == SegmentKind::transit ? m.transit_paths : m.arnold_paths;
-    if (q.kind != kind || paths.empty()) {
+    const bool transit = q.kind == SegmentKind::transit;
+    auto& paths = transit ? m.transit_paths : m.arnold_paths;
+    if (transit != in_transit || paths.empty()) {
       paths.emplace_back();
       if (i > 0) paths.back().emplace_back(rp.points[i - 1].x, rp.points[i - 1].y);
-      kind = q.kind;
+      in_transit = transit;
     }
     if (i % stride == 0 || i + 1 == rp.points.size() || q.kind == SegmentKind::transit) paths.back().emplace_back(q.x, q.y);
   }

@@ -72,7 +72,7 @@ std::pair<double, double> padded(double lo, double hi) {
 
 void frame(mglGraph& gr, const std::string& title, const std::string& xlabel, const std::string& ylabel) {
   gr.SetFontSize(3.2);
-  if (!title.empty()) gr.Title(literal(title).c_str(), "", -1.4);
+  if (!title.empty()) gr.Title(literal(title).c_str(), "", title.size() > 40 ? -1.1 : -1.4);
   gr.Box();
   gr.Axis("xy");
   gr.Label('x', literal(xlabel).c_str(), 0);
@@ -186,14 +186,24 @@ void render(const MapPlot& p, const std::string& path, ImageSize size) {
   for (const auto& path_pts : p.arnold_paths) draw(path_pts, "b");
   for (const auto& path_pts : p.transit_paths) draw(path_pts, "r2");
   for (const auto& [x, y] : p.zone_midpoints) gr.Mark(mglPoint(x, y, 0.6), "m+");
+  for (const auto& [x, y] : p.subgoals) gr.Mark(mglPoint(x, y, 0.6), "k.");
+  auto outline = [&](const Box2& b, const char* pen) {
+    const mglPoint a(b.x0, b.y0, 0.55), c(b.x1, b.y0, 0.55), d(b.x1, b.y1, 0.55), e(b.x0, b.y1, 0.55);
+    gr.Line(a, c, pen), gr.Line(c, d, pen), gr.Line(d, e, pen), gr.Line(e, a, pen);
+  };
+  for (const Box2& b : p.regions) outline(b, "G3");
+  for (const Box2& b : p.transitions) outline(b, "m;2");
   gr.Mark(mglPoint(p.start.first, p.start.second, 0.7), "g#o");
   gr.Mark(mglPoint(p.end.first, p.end.second, 0.7), "r#s");
   gr.AddLegend("path", "b");
   if (!p.transit_paths.empty()) gr.AddLegend("transit", "r2");
   if (!p.zone_midpoints.empty()) gr.AddLegend("zone midpoint", "m+");
+  if (!p.subgoals.empty()) gr.AddLegend("sub-goal", "k.");
+  if (!p.regions.empty()) gr.AddLegend("coverage rectangle", "G3");
+  if (!p.transitions.empty()) gr.AddLegend("transition rectangle", "m;2");
   gr.AddLegend("start", "g#o");
   gr.AddLegend("end", "r#s");
-  gr.Legend(1, "#", "");
+  gr.Legend(1, "#", "size -0.75");
   save(gr, path);
 }
 

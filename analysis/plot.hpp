@@ -49,6 +49,8 @@ struct MapPlot {
   std::vector<Box2> obstacles;
   std::vector<std::vector<std::pair<double, double>>> arnold_paths, transit_paths;
   std::vector<std::pair<double, double>> zone_midpoints;
+  std::vector<std::pair<double, double>> subgoals;  // Chebyshev planner
+  std::vector<Box2> regions, transitions;           // its free-space decomposition
   std::pair<double, double> start{0, 0}, end{0, 0};
 };
 

@@ -109,7 +109,8 @@ TextTable summary_table(const ResultSet& rs, const TableOptions& opt) {
   TextTable t;
   t.title = "Runs per group";
   t.header = by;
-  for (const char* h : {"runs", "ok", "ok rate", "CT min", "CT q1", "CT median", "CT q3", "CT max", "median PR"})
+  for (const char* h : {"runs", "ok", "ok rate", "CT min", "CT q1", "CT median", "CT q3", "CT max", "median PR",
+                        "median coverage"})
     t.header.emplace_back(h);
   for (const Group& g : group_rows(rs, by, all_rows(rs))) {
     std::vector<std::string> row = g.key;
@@ -118,9 +119,14 @@ TextTable summary_table(const ResultSet& rs, const TableOptions& opt) {
     row.push_back(fmt_fixed(group_statistic(rs, g.rows, "ok_rate"), 3));
     for (const char* s : {"min", "q1", "median", "q3", "max"}) row.push_back(fmt_sig(group_statistic(rs, g.rows, s), 5));
     row.push_back(fmt_sig(group_statistic(rs, g.rows, "median", "pr"), 3));
+    std::vector<double> cov;
+    if (rs.has("final_coverage"))
+      for (std::size_t r : g.rows) cov.push_back(rs.num("final_coverage")[r]);
+    row.push_back(fmt_fixed(quantile(cov, 0.5), 3));
     t.add_row(std::move(row));
   }
-  t.notes.push_back("CT quantiles over ok runs (linear interpolation, numpy's default); PR = CT / T_opt.");
+  t.notes.push_back("CT quantiles over ok runs (linear interpolation, numpy's default); PR = CT / T_opt; "
+                    "median coverage: final coverage over all runs (the coverage reached when a run stopped).");
   return t;
 }
 

@@ -40,6 +40,7 @@ RunRow make_row(std::int64_t id, const RunParams& p, const std::string& env, con
   r.result.t_opt = t_opt;
   r.result.pr = std::isinf(ct) ? std::numeric_limits<double>::quiet_NaN() : ct / t_opt;
   r.result.steps = 100;
+  r.result.final_coverage = std::isinf(ct) ? 0.5 : 0.9;
   return r;
 }
 
@@ -176,7 +177,8 @@ TEST_F(Table1Results, SummaryGivesRunsOkRateAndQuantilesPerGroup) {
   const TextTable t = make_table("summary", rs, opt);
   ASSERT_EQ(t.rows.size(), 4u);
   // Label 1: 6 runs, 5 ok; CTs 800 900 1000 1000 1200.
-  EXPECT_EQ(t.rows[0], (std::vector<std::string>{"1", "6", "5", "0.833", "800", "900", "1000", "1000", "1200", "0.444"}));
+  EXPECT_EQ(t.rows[0],
+            (std::vector<std::string>{"1", "6", "5", "0.833", "800", "900", "1000", "1000", "1200", "0.444", "0.900"}));
   expect_golden("summary_by_label.csv", table_text("summary", rs, opt, TableFormat::csv));
 }
 
@@ -227,6 +229,17 @@ TEST(Tables, ResultsOfSeveralFilesAreReadAsOne) {
   TableOptions opt;
   EXPECT_EQ(table_text("table1", ResultSet::load({dir.file("a.h5"), dir.file("b.h5")}), opt, TableFormat::md),
             table_text("table1", ResultSet::load({dir.file("all.h5")}), opt, TableFormat::md));
+}
+
+TEST(Tables, Seed001NeedsNoResultsAndShowsThePapersValues) {
+  const auto r = test::run_chaosweep("table seed001 --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("quantity,n,ours,paper,note\n", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("\"Lyapunov exponent, raw map\",1000000,1.7918,1.7918"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(",0.8309,"), std::string::npos);
+  const auto bad = test::run_chaosweep("table summary");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("give one or more result files"), std::string::npos) << bad.err;
 }
 
 TEST(Grouping, QuantileInterpolatesLikeNumpy) {
