@@ -1,6 +1,7 @@
 #include "result_set.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "h5_store.hpp"
 #include "param_table.hpp"
@@ -93,6 +94,45 @@ const std::vector<std::string>& ResultSet::text(const std::string& name) const {
 std::string ResultSet::cell(const std::string& name, std::size_t row) const {
   if (const auto it = text_.find(name); it != text_.end()) return it->second[row];
   return format_number(num(name)[row]);
+}
+
+ResultSet ResultSet::where(const std::vector<std::string>& conditions) const {
+  std::vector<bool> keep(rows_, true);
+  for (const std::string& c : conditions) {
+    const auto eq = c.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw AnalysisError("--where " + c + ": expected COLUMN=VALUE");
+    const std::string col = c.substr(0, eq), val = c.substr(eq + 1);
+    if (is_numeric(col)) {
+      double v;
+      try {
+        std::size_t used = 0;
+        v = std::stod(val, &used);
+        if (used != val.size()) throw std::invalid_argument(val);
+      } catch (const std::exception&) {
+        throw AnalysisError("--where " + c + ": '" + col + "' is numeric, '" + val + "' is not a number");
+      }
+      const auto& x = num(col);
+      for (std::size_t r = 0; r < rows_; ++r) keep[r] = keep[r] && std::fabs(x[r] - v) <= 1e-9 * std::max(1.0, std::fabs(v));
+    } else {
+      const auto& x = text(col);  // throws naming a missing column
+      for (std::size_t r = 0; r < rows_; ++r) keep[r] = keep[r] && x[r] == val;
+    }
+  }
+  ResultSet out;
+  out.sources_ = sources_;
+  for (const auto& [k, v] : num_) {
+    auto& dst = out.num_[k];
+    for (std::size_t r = 0; r < rows_; ++r)
+      if (keep[r]) dst.push_back(v[r]);
+  }
+  for (const auto& [k, v] : text_) {
+    auto& dst = out.text_[k];
+    for (std::size_t r = 0; r < rows_; ++r)
+      if (keep[r]) dst.push_back(v[r]);
+  }
+  for (bool k : keep) out.rows_ += k;
+  return out;
 }
 
 std::vector<std::size_t> all_rows(const ResultSet& rs) {

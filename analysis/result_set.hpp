@@ -36,6 +36,9 @@ class ResultSet {
   // Any column's value as text (numbers in the shortest round-trip form).
   std::string cell(const std::string& name, std::size_t row) const;
   std::vector<std::string> names() const;
+  // The rows whose columns equal the given values ("COL=VALUE", numbers
+  // compared as numbers); throws AnalysisError naming a bad condition.
+  ResultSet where(const std::vector<std::string>& conditions) const;
 
  private:
   [[noreturn]] void missing(const std::string& name, const char* kind) const;

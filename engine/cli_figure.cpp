@@ -25,6 +25,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "Example: chaosweep figure fig6a out/fig6/results.h5 -o out/fig6/fig6a.png");
   struct Opts {
     std::string name, out, mark, size = "800x600";
+    std::vector<std::string> where;
     std::vector<std::string> files;
     FigureOptions fig;
   };
@@ -39,6 +40,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
   cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column");
+  cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--size", o->size, "image size in pixels, WIDTHxHEIGHT")->capture_default_str();
   cmd->callback([o, &action] {
     action = [o]() -> int {
@@ -51,7 +53,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
             throw AnalysisError("--mark: '" + v + "' is not a number");
           }
         }
-        const FigureOutput out = make_figure(o->name, ResultSet::load(o->files), o->fig, o->out);
+        const FigureOutput out = make_figure(o->name, ResultSet::load(o->files).where(o->where), o->fig, o->out);
         for (const std::string& line : out.lines) std::cout << line << "\n";
         std::cout << "wrote " << out.image << " and " << out.csv << "\n";
         return exit_ok;

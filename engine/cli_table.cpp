@@ -26,6 +26,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
       "Example: chaosweep table best out/fig6/results.h5 --top 10");
   struct Opts {
     std::string name, format = "md", out, by, params;
+    std::vector<std::string> where;
     std::vector<std::string> files;
     TableOptions table;
   };
@@ -36,6 +37,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
   cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary)");
   cmd->add_option("--params", o->params, "parameter columns, comma-separated (best)");
+  cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--top", o->table.top, "tuples per group (best)")->check(CLI::Range(1, 1000000));
   cmd->add_option("--paper", o->table.paper, "table1: CSV with row,paper_ct,paper_pr")->check(CLI::ExistingFile);
   cmd->callback([o, &action] {
@@ -46,7 +48,8 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
         o->table.params = split_list(o->params);
         const bool needs = table_needs_results(o->name);
         if (needs && o->files.empty()) throw AnalysisError("give one or more result files (.h5)");
-        const TextTable t = make_table(o->name, needs ? ResultSet::load(o->files) : ResultSet{}, o->table);
+        const TextTable t =
+            make_table(o->name, needs ? ResultSet::load(o->files).where(o->where) : ResultSet{}, o->table);
         if (o->out.empty()) {
           t.write(std::cout, f);
           return exit_ok;

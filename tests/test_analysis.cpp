@@ -220,6 +220,19 @@ TEST(Tables, BadNamesAndColumnsAreNamedInTheError) {
   EXPECT_THROW(ResultSet::load({dir.file("foreign.h5")}), AnalysisError);
 }
 
+TEST(Tables, WhereKeepsTheRowsMatchingEveryCondition) {
+  TempDir dir;
+  write_results(dir.file("t1.h5"), table1_rows());
+  const ResultSet rs = ResultSet::load({dir.file("t1.h5")});
+  EXPECT_EQ(rs.where({"label=1"}).rows(), 6u);
+  EXPECT_EQ(rs.where({"label=1", "ds_index=3"}).rows(), 2u);
+  EXPECT_EQ(rs.where({"status=timeout"}).rows(), 1u);
+  EXPECT_EQ(rs.where({"c=0.5"}).rows(), 2u);
+  EXPECT_THROW(rs.where({"ds_index=three"}), AnalysisError);
+  EXPECT_THROW(rs.where({"colour=red"}), AnalysisError);
+  EXPECT_THROW(rs.where({"label"}), AnalysisError);
+}
+
 TEST(Tables, ResultsOfSeveralFilesAreReadAsOne) {
   TempDir dir;
   auto rows = table1_rows();
