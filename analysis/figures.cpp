@@ -8,6 +8,8 @@
 #include <set>
 
 #include "grouping.hpp"
+#include "chebyshev_analysis.hpp"
+#include "chebyshev_map.hpp"
 #include "param_table.hpp"
 #include "rect_decomposition.hpp"
 #include "replay.hpp"
@@ -287,20 +289,92 @@ FigureOutput coverage(const ResultSet& rs, const FigureOptions& opt, const std::
   return out;
 }
 
+// ------------------------------------------------- the Chebyshev map itself
+
+// Seed 001, Figs. 2-3: the orbit's histogram raw and after the arcsine
+// transform (k = 6, x0 = 0.1, n = 2000 as in the paper, 20 bins), with the
+// chi-square statistics against flat and arcsine densities printed.
+FigureOutput cheb_histogram(const FigureOptions& opt, const std::string& path) {
+  const int k = 6, bins = 20;
+  const long n = 2000;
+  const auto raw = orbit_histogram(k, 0.1, n, bins, ChebTransform::none);
+  const auto flat = orbit_histogram(k, 0.1, n, bins, ChebTransform::arcsine);
+  LinePlot p;
+  p.title = "Chebyshev map k = 6: orbit histogram, raw and arcsine-transformed";
+  p.xlabel = "value";
+  p.ylabel = "share of the orbit (%)";
+  TextTable csv;
+  csv.header = {"bin_lo", "bin_hi", "raw_count", "arcsine_count"};
+  LineSeries a{"raw x", {}, {}}, b{"(2/pi) asin x", {}, {}};
+  for (int i = 0; i < bins; ++i) {
+    const double lo = -1.0 + 2.0 * i / bins, hi = -1.0 + 2.0 * (i + 1) / bins;
+    for (double x : {lo, hi}) {  // steps
+      a.x.push_back(x), a.y.push_back(100.0 * double(raw[std::size_t(i)]) / double(n));
+      b.x.push_back(x), b.y.push_back(100.0 * double(flat[std::size_t(i)]) / double(n));
+    }
+    csv.add_row({format_number(lo), format_number(hi), std::to_string(raw[std::size_t(i)]),
+                 std::to_string(flat[std::size_t(i)])});
+  }
+  double top = 0;
+  for (double y : a.y) top = std::max(top, y);
+  p.y_range = {0.0, 1.1 * top};
+  p.series = {std::move(a), std::move(b)};
+  FigureOutput out{path, csv_beside(path), {}};
+  out.lines.push_back("chi-square vs flat (19 dof, 99.9% critical 43.8): raw " + fmt_sig(chi_square_uniform(raw), 5) +
+                      ", arcsine-transformed " + fmt_sig(chi_square_uniform(flat), 5) +
+                      "; raw vs the arcsine density: " + fmt_sig(chi_square_arcsine(raw), 5));
+  csv.write_csv_file(out.csv);
+  render(p, path, opt.size);
+  return out;
+}
+
+// Seed 001, Figs. 1b and 5: the largest Lyapunov exponent over k, of the raw
+// map and of the arcsine-transformed one (a conjugate: both ln k), beside
+// what the paper's Eq. 7 gives when averaged as printed.
+FigureOutput cheb_lyapunov(const FigureOptions& opt, const std::string& path) {
+  const long n = 200000;
+  LinePlot p;
+  p.title = "Chebyshev map: largest Lyapunov exponent over k";
+  p.xlabel = "k";
+  p.ylabel = "Lyapunov exponent";
+  LineSeries raw{"raw map", {}, {}}, conj{"after arcsine transform", {}, {}}, eq7{"paper's Eq. 7, as printed", {}, {}};
+  TextTable csv;
+  csv.header = {"k", "raw", "arcsine", "eq7_as_printed", "ln_k"};
+  for (int k = 2; k <= 10; ++k) {
+    const double a = lyapunov_exponent(k, 0.1, n), b = lyapunov_exponent_arcsine(k, 0.1, n),
+                 c = lyapunov_paper_eq7(k, 0.1, n);
+    raw.x.push_back(k), raw.y.push_back(a);
+    conj.x.push_back(k), conj.y.push_back(b);
+    eq7.x.push_back(k), eq7.y.push_back(c);
+    csv.add_row({std::to_string(k), fmt_fixed(a, 5), fmt_fixed(b, 5), fmt_fixed(c, 5), fmt_fixed(std::log(k), 5)});
+  }
+  p.series = {std::move(raw), std::move(conj), std::move(eq7)};
+  p.mark = PlotMark{6, std::log(6.0), "k = 6: ln 6 = 1.7918 (paper: 3.2147 after the transform)"};
+  FigureOutput out{path, csv_beside(path), {}};
+  csv.write_csv_file(out.csv);
+  render(p, path, opt.size);
+  return out;
+}
+
 }  // namespace
+
+bool figure_needs_results(const std::string& name) { return name != "cheb_histogram" && name != "cheb_lyapunov"; }
 
 std::string csv_beside(const std::string& image_path) {
   return std::filesystem::path(image_path).replace_extension(".csv").string();
 }
 
 const std::vector<std::string>& figure_names() {
-  static const std::vector<std::string> names{"fig6a", "fig6b", "heatmap", "trajectory", "coverage"};
+  static const std::vector<std::string> names{"fig6a",    "fig6b",          "heatmap",
+                                              "trajectory", "coverage", "cheb_histogram", "cheb_lyapunov"};
   return names;
 }
 
 FigureOutput make_figure(const std::string& name, const ResultSet& rs, const FigureOptions& opt,
                          const std::string& image_path) {
   check_image_path(image_path);
+  if (name == "cheb_histogram") return cheb_histogram(opt, image_path);
+  if (name == "cheb_lyapunov") return cheb_lyapunov(opt, image_path);
   if (rs.rows() == 0) throw AnalysisError("the result files hold no runs");
   if (name == "fig6a") return fig6a(rs, opt, image_path);
   if (name == "fig6b") return fig6b(rs, opt, image_path);

@@ -32,9 +32,13 @@ struct FigureOutput {
 // heatmap: a statistic of CT (or ok rate, runs) over two swept axes.
 // trajectory: one run's path over its map, from a replay of its parameters.
 // coverage: coverage vs time for several runs.
+// cheb_histogram: the Chebyshev orbit's histogram, raw and arcsine-transformed.
+// cheb_lyapunov: the Chebyshev map's Lyapunov exponent over k, raw and transformed.
 FigureOutput make_figure(const std::string& name, const ResultSet& rs, const FigureOptions& opt,
                          const std::string& image_path);
 const std::vector<std::string>& figure_names();
+// cheb_histogram, cheb_lyapunov: seed 001's map analysis, computed; no result file.
+bool figure_needs_results(const std::string& name);
 
 // The CSV path written beside an image: the same path with .csv.
 std::string csv_beside(const std::string& image_path);

@@ -22,6 +22,8 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "              midpoints, covered cells\n"
       "  coverage    coverage vs time of several runs (--run ID, repeatable) or of the median\n"
       "              run of each value of --by COLUMN\n"
+      "  cheb_histogram, cheb_lyapunov  seed 001's Chebyshev map: orbit histogram raw and\n"
+      "              transformed; Lyapunov exponent over k (computed, no result file)\n"
       "Example: chaosweep figure fig6a out/fig6/results.h5 -o out/fig6/fig6a.png");
   struct Opts {
     std::string name, out, mark, size = "800x600";
@@ -31,7 +33,8 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("name", o->name, "fig6a, fig6b, heatmap, trajectory or coverage")->required();
-  cmd->add_option("results", o->files, "result files (.h5)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("results", o->files, "result files (.h5); none for cheb_histogram, cheb_lyapunov")
+      ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->out, "image file: .png, .svg, .pdf or .eps")->required();
   cmd->add_option("--x", o->fig.x, "heatmap: column on the x axis");
   cmd->add_option("--y", o->fig.y, "heatmap: column on the y axis");
@@ -53,7 +56,10 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
             throw AnalysisError("--mark: '" + v + "' is not a number");
           }
         }
-        const FigureOutput out = make_figure(o->name, ResultSet::load(o->files).where(o->where), o->fig, o->out);
+        const bool needs = figure_needs_results(o->name);
+        if (needs && o->files.empty()) throw AnalysisError("give one or more result files (.h5)");
+        const FigureOutput out =
+            make_figure(o->name, needs ? ResultSet::load(o->files).where(o->where) : ResultSet{}, o->fig, o->out);
         for (const std::string& line : out.lines) std::cout << line << "\n";
         std::cout << "wrote " << out.image << " and " << out.csv << "\n";
         return exit_ok;

@@ -380,6 +380,19 @@ TEST_F(Fig6Results, EveryImageFormatIsWrittenAndOthersAreRefused) {
   EXPECT_THROW(parse_image_size("50x50"), AnalysisError);
 }
 
+TEST(ChebyshevFigures, HistogramAndLyapunovNeedNoResultsAndDrawTheirData) {
+  TempDir dir;
+  FigureOptions opt;
+  const FigureOutput h = make_figure("cheb_histogram", ResultSet{}, opt, dir.file("h.png"));
+  ASSERT_EQ(h.lines.size(), 1u);
+  EXPECT_NE(h.lines[0].find("arcsine-transformed"), std::string::npos);
+  expect_drawn(h.image, 800, 600);
+  const FigureOutput l = make_figure("cheb_lyapunov", ResultSet{}, opt, dir.file("l.png"));
+  const std::string csv = test::read_file(l.csv);
+  EXPECT_NE(csv.find("\n6,1.7917"), std::string::npos) << csv;  // ln 6 = 1.79176
+  expect_drawn(l.image, 800, 600);
+}
+
 // Trajectory and coverage figures replay real runs: a small sweep on a 12 m
 // map, one run with map zoning so that transits and zone midpoints appear.
 class ReplayedRuns : public ::testing::Test {
