@@ -2,6 +2,7 @@
 // Helpers shared by the subcommands: run-parameter flags generated from the
 // parameter table, exit codes, provenance.
 #include <CLI/CLI.hpp>
+#include <iostream>
 #include <map>
 #include <string>
 
@@ -20,6 +21,21 @@ void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw);
 
 // Applies raw flag values; throws SpecError naming the flag.
 void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& run);
+
+// Runs a subcommand's body: BadInput (the module's error for bad input)
+// becomes a message and exit 2, any other exception a message and exit 3.
+template <class BadInput, class Body>
+int run_reporting(const char* command, Body&& body) {
+  try {
+    return body();
+  } catch (const BadInput& e) {
+    std::cerr << "chaosweep " << command << ": " << e.what() << "\n";
+    return exit_bad_input;
+  } catch (const std::exception& e) {
+    std::cerr << "chaosweep " << command << ": " << e.what() << "\n";
+    return exit_failure;
+  }
+}
 
 std::string host_name();
 std::string utc_now();  // ISO 8601

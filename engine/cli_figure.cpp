@@ -47,7 +47,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--size", o->size, "image size in pixels, WIDTHxHEIGHT")->capture_default_str();
   cmd->callback([o, &action] {
     action = [o]() -> int {
-      try {
+      return run_reporting<AnalysisError>("figure", [&]() -> int {
         o->fig.size = parse_image_size(o->size);
         for (const std::string& v : split_list(o->mark)) {
           try {
@@ -63,13 +63,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
         for (const std::string& line : out.lines) std::cout << line << "\n";
         std::cout << "wrote " << out.image << " and " << out.csv << "\n";
         return exit_ok;
-      } catch (const AnalysisError& e) {
-        std::cerr << "chaosweep figure: " << e.what() << "\n";
-        return exit_bad_input;
-      } catch (const std::exception& e) {
-        std::cerr << "chaosweep figure: " << e.what() << "\n";
-        return exit_failure;
-      }
+      });
     };
   });
 }

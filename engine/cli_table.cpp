@@ -42,7 +42,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--paper", o->table.paper, "table1: CSV with row,paper_ct,paper_pr")->check(CLI::ExistingFile);
   cmd->callback([o, &action] {
     action = [o]() -> int {
-      try {
+      return run_reporting<AnalysisError>("table", [&]() -> int {
         const TableFormat f = parse_table_format(o->format);
         o->table.by = split_list(o->by);
         o->table.params = split_list(o->params);
@@ -63,13 +63,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
         }
         std::filesystem::rename(tmp, o->out);
         return exit_ok;
-      } catch (const AnalysisError& e) {
-        std::cerr << "chaosweep table: " << e.what() << "\n";
-        return exit_bad_input;
-      } catch (const std::exception& e) {
-        std::cerr << "chaosweep table: " << e.what() << "\n";
-        return exit_failure;
-      }
+      });
     };
   });
 }
