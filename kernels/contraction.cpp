@@ -9,7 +9,9 @@
 #include "coverage_grid.hpp"
 #include "environment.hpp"
 
-namespace chaosweep {
+// Seed 003 has its own Sampling, Heading, ... : a namespace keeps them apart
+// from the common model's (run_params.hpp).
+namespace chaosweep::seed003 {
 
 namespace {
 
@@ -287,4 +289,4 @@ MirrorRun mirror_mapping(const Seed003Robot& robot, Point start, int n, const Wo
   return out;
 }
 
-}  // namespace chaosweep
+}  // namespace chaosweep::seed003

@@ -23,7 +23,9 @@
 
 #include "transit.hpp"  // Point
 
-namespace chaosweep {
+// Seed 003 has its own Sampling, Heading, ... : a namespace keeps them apart
+// from the common model's (run_params.hpp).
+namespace chaosweep::seed003 {
 
 // Which Arnold coordinate is the robot's heading (the paper's x, y or z;
 // numbered as DSindex in seed 000).
@@ -171,4 +173,4 @@ struct MirrorRun {
 MirrorRun mirror_mapping(const Seed003Robot& robot, Point start, int n, const Workplace& wp,
                          MirrorMode mode = MirrorMode::point);
 
-}  // namespace chaosweep
+}  // namespace chaosweep::seed003

@@ -11,6 +11,7 @@
 #include "contraction.hpp"
 
 using namespace chaosweep;
+using namespace chaosweep::seed003;
 
 namespace {
 
