@@ -393,6 +393,35 @@ TEST(SweepSpec, DemoSpecIsAFewHundredRunsOfTheOriginalPlanner) {
   EXPECT_EQ(s.base.params.size_x, 50.0);
 }
 
+TEST(SweepSpec, Table1SearchSpecsHaveOnePartPerTechniqueSet) {
+  const std::string dir = std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/";
+  const SweepSpec coarse = load_sweep_spec(dir + "table1_search.toml");
+  const SweepSpec fine = load_sweep_spec(dir + "table1_search_fine.toml");
+  EXPECT_EQ(coarse.size(), 97760);
+  EXPECT_EQ(fine.size(), 363488);
+  for (const SweepSpec* s : {&coarse, &fine}) {
+    ASSERT_EQ(s->parts.size(), 9u);
+    EXPECT_EQ(s->parts[7].name, "MZ+SC");
+    // Each part's first run is its first Table 1 row; seeds vary fastest.
+    const char* first_rows[] = {"1", "11", "12", "20", "24", "28", "36", "40", "44"};
+    for (std::size_t k = 0; k < 9; ++k) {
+      const RunSpec r = s->run(s->part_offset(k));
+      EXPECT_EQ(r.label, first_rows[k]) << s->name << " part " << k;
+      EXPECT_EQ(r.params.seed, 0);
+      EXPECT_EQ(r.params.ic_jitter, 1e-6);
+      EXPECT_EQ(r.params.max_pr, 50.0);
+    }
+    const RunSpec last = s->run(s->size() - 1);
+    EXPECT_EQ(last.label, "47");
+    EXPECT_EQ(last.params.seed, 31);
+    EXPECT_EQ(last.params.ds_index, 3);
+    EXPECT_EQ(last.params.c, 1.0);
+    EXPECT_EQ(last.params.f, 6.0);
+    EXPECT_EQ(last.params.index_switching, 1);
+    EXPECT_EQ(last.params.map_zoning, 1);
+  }
+}
+
 // ------------------------------------------------------------ environments
 
 TEST(Environment, LoadsRelativeObstaclesScaledToTheMap) {
