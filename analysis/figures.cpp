@@ -289,6 +289,56 @@ FigureOutput coverage(const ResultSet& rs, const FigureOptions& opt, const std::
   return out;
 }
 
+// ------------------------------------------------------------- line plots
+
+// A statistic of column y (median by default) per value of column x, one
+// series per value of --by (e.g. seed 003's coverage vs n).
+FigureOutput line_figure(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
+  if (opt.x.empty() || opt.y.empty()) throw AnalysisError("line: give the axes with --x COLUMN --y COLUMN");
+  (void)rs.num(opt.x), (void)rs.num(opt.y);
+  const std::string stat = opt.stat == "min" && opt.stat_default ? "median" : opt.stat;
+  LinePlot p;
+  p.title = stat + " of " + opt.y + " over " + opt.x;
+  p.xlabel = opt.x;
+  p.ylabel = opt.y;
+  TextTable csv;
+  csv.header = {opt.by.empty() ? "series" : opt.by, opt.x, stat + "_" + opt.y, "runs"};
+  std::vector<Group> series;
+  if (opt.by.empty()) {
+    Group all;
+    all.key = {"all"};
+    all.key_num = {0.0};
+    all.rows = all_rows(rs);
+    series.push_back(std::move(all));
+  } else {
+    series = group_rows(rs, {opt.by}, all_rows(rs));
+  }
+  for (const Group& s : series) {
+    LineSeries line{opt.by.empty() ? "" : opt.by + " " + s.key[0], {}, {}};
+    for (const Group& g : group_rows(rs, {opt.x}, s.rows)) {
+      std::vector<double> v;
+      for (std::size_t r : g.rows) v.push_back(rs.num(opt.y)[r]);
+      double y;
+      if (stat == "mean") {
+        y = 0;
+        for (double x : v) y += x / double(v.size());
+      } else if (stat == "min" || stat == "median" || stat == "max" || stat == "q1" || stat == "q3") {
+        y = quantile(v, stat == "min" ? 0 : stat == "q1" ? 0.25 : stat == "median" ? 0.5 : stat == "q3" ? 0.75 : 1);
+      } else {
+        throw AnalysisError("line: --stat must be one of min, q1, median, mean, q3, max");
+      }
+      line.x.push_back(g.key_num[0]);
+      line.y.push_back(y);
+      csv.add_row({s.key[0], g.key[0], fmt_sig(y, 6), std::to_string(g.rows.size())});
+    }
+    p.series.push_back(std::move(line));
+  }
+  FigureOutput out{path, csv_beside(path), {}};
+  csv.write_csv_file(out.csv);
+  render(p, path, opt.size);
+  return out;
+}
+
 // ------------------------------------------------- the Chebyshev map itself
 
 // Seed 001, Figs. 2-3: the orbit's histogram raw and after the arcsine
@@ -365,7 +415,7 @@ std::string csv_beside(const std::string& image_path) {
 }
 
 const std::vector<std::string>& figure_names() {
-  static const std::vector<std::string> names{"fig6a",    "fig6b",          "heatmap",
+  static const std::vector<std::string> names{"fig6a",    "fig6b",          "heatmap",       "line",
                                               "trajectory", "coverage", "cheb_histogram", "cheb_lyapunov"};
   return names;
 }
@@ -383,6 +433,7 @@ FigureOutput make_figure(const std::string& name, const ResultSet& rs, const Fig
     return heatmap_figure(rs, opt.x, opt.y, opt.stat, opt.stat + " of coverage time over " + opt.x + " and " + opt.y,
                           std::nullopt, opt, image_path);
   }
+  if (name == "line") return line_figure(rs, opt, image_path);
   if (name == "trajectory") return trajectory(rs, opt, image_path);
   if (name == "coverage") return coverage(rs, opt, image_path);
   std::string list;

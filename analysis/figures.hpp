@@ -13,7 +13,8 @@ namespace chaosweep {
 
 struct FigureOptions {
   std::string x, y;                  // heatmap: the two axes
-  std::string stat = "min";          // heatmap: statistic (grouping.hpp)
+  std::string stat = "min";          // heatmap, line: statistic (grouping.hpp)
+  bool stat_default = true;          // --stat not given (line then takes the median)
   std::vector<double> mark;          // fig6a/fig6b: the marked (A, B, C)
   double bound = 0;                  // fig6b: time bound, s (0: the runs' max_time)
   std::vector<std::int64_t> runs;    // trajectory, coverage: run ids
@@ -30,6 +31,7 @@ struct FigureOutput {
 // fig6b: share of (A, B, C) tuples reaching the target within each time bound,
 //        the marked tuple's CT and percentile shown.
 // heatmap: a statistic of CT (or ok rate, runs) over two swept axes.
+// line: a statistic of any column over another, one line per --by value.
 // trajectory: one run's path over its map, from a replay of its parameters.
 // coverage: coverage vs time for several runs.
 // cheb_histogram: the Chebyshev orbit's histogram, raw and arcsine-transformed.

@@ -11,6 +11,7 @@
 #include "grouping.hpp"
 #include "param_table.hpp"
 #include "seed001.hpp"
+#include "seed003.hpp"
 
 namespace chaosweep {
 
@@ -291,7 +292,7 @@ double tuple_score(const ResultSet& rs, const std::vector<std::size_t>& rows) {
 }
 
 const std::vector<std::string>& table_names() {
-  static const std::vector<std::string> names{"table1", "best", "summary", "seed001"};
+  static const std::vector<std::string> names{"table1", "best", "summary", "seed001", "seed003"};
   return names;
 }
 
@@ -303,6 +304,7 @@ TextTable make_table(const std::string& name, const ResultSet& rs, const TableOp
   if (name == "table1") return table1(rs, opt);
   if (name == "best") return best_table(rs, opt);
   if (name == "summary") return summary_table(rs, opt);
+  if (name == "seed003") return seed003_table(rs);
   std::string list;
   for (const std::string& n : table_names()) list += (list.empty() ? "" : ", ") + n;
   throw AnalysisError("unknown table '" + name + "' (allowed: " + list + ")");

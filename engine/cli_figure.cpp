@@ -18,6 +18,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "  fig6b       share of (A, B, C) tuples reaching the target within each time bound up to\n"
       "              --bound (default: the runs' max_time); prints the marked tuple's percentile\n"
       "  heatmap     --stat (min, q1, median, mean, q3, max, ok_rate, runs) over --x and --y\n"
+      "  line        --stat (default median) of column --y over column --x, a line per --by value\n"
       "  trajectory  one run (--run ID) replayed over its map: path, transits, obstacles, zone\n"
       "              midpoints, covered cells\n"
       "  coverage    coverage vs time of several runs (--run ID, repeatable) or of the median\n"
@@ -38,14 +39,15 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("-o,--output", o->out, "image file: .png, .svg, .pdf or .eps")->required();
   cmd->add_option("--x", o->fig.x, "heatmap: column on the x axis");
   cmd->add_option("--y", o->fig.y, "heatmap: column on the y axis");
-  cmd->add_option("--stat", o->fig.stat, "heatmap: statistic")->capture_default_str();
+  auto* stat = cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic")->capture_default_str();
   cmd->add_option("--mark", o->mark, "fig6a/fig6b: the tuple to mark, A,B,C");
   cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
-  cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column");
+  cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column; line: one line per value");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--size", o->size, "image size in pixels, WIDTHxHEIGHT")->capture_default_str();
-  cmd->callback([o, &action] {
+  cmd->callback([o, stat, &action] {
+    o->fig.stat_default = stat->count() == 0;
     action = [o]() -> int {
       return run_reporting<AnalysisError>("figure", [&]() -> int {
         o->fig.size = parse_image_size(o->size);

@@ -23,6 +23,8 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
       "  summary  per --by group (default: variant): runs, ok rate, CT quantiles, median PR\n"
       "  seed001  seed 001's Chebyshev-map numbers (Lyapunov exponents, v(xy)) beside ours;\n"
       "           computed, no result file\n"
+      "  seed003  seed 003's Tables 1-3, loop and mirror mapping beside ours, from the results\n"
+      "           of experiments/seed003.toml\n"
       "Example: chaosweep table best out/fig6/results.h5 --top 10");
   struct Opts {
     std::string name, format = "md", out, by, params;

@@ -71,6 +71,7 @@ std::vector<Column> make_columns() {
   c.push_back(i64("transit_attempts", [](const RunRow& r) { return r.result.transit_attempts; }));
   c.push_back(i64("final_ds_index", [](const RunRow& r) { return std::int64_t(r.result.final_ds_index); }));
   c.push_back(i64("subgoals", [](const RunRow& r) { return r.result.subgoals; }));
+  c.push_back(i64("reflections", [](const RunRow& r) { return r.result.reflections; }));
   c.push_back(text("message", 160, [](const RunRow& r) { return r.result.message; }));
   c.push_back(f64("wall_time", [](const RunRow& r) { return r.result.wall_time; }, false));
   return c;

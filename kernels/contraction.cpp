@@ -289,4 +289,18 @@ MirrorRun mirror_mapping(const Seed003Robot& robot, Point start, int n, const Wo
   return out;
 }
 
+std::vector<Candidate> ic_grid_candidates(const Seed003Robot& robot, double step, const Workplace& wp,
+                                          const CandidateParams& p) {
+  std::vector<Candidate> out;
+  const int k = int(std::lround(10.0 / step));
+  for (int i = 0; i <= k; ++i)
+    for (int j = 0; j <= k; ++j) {
+      Seed003Robot r = robot;
+      r.ic = {i * step, j * step, 0.0};
+      const CandidateSweep s = candidate_sweep(r, {i * step, j * step}, wp, p);
+      if (s.kept) out.insert(out.end(), s.samples.begin(), s.samples.end());
+    }
+  return out;
+}
+
 }  // namespace chaosweep::seed003

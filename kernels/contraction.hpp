@@ -136,6 +136,14 @@ struct CandidateSweep {
 CandidateSweep candidate_sweep(const Seed003Robot& robot, Point start, const Workplace& wp,
                                const CandidateParams& p = {});
 
+// Algorithm 1 with the start point seeding the Arnold state, ic = (a, b, 0)
+// for (a, b) on a grid of step `step` over [0, 10]^2 (heading and the rest
+// from `robot`): the candidates of every kept start. In the literal model the
+// start point changes nothing after Map and no start reaches the 40%
+// threshold (docs/seed003.md), so this is the reading the loop runs on.
+std::vector<Candidate> ic_grid_candidates(const Seed003Robot& robot, double step, const Workplace& wp,
+                                          const CandidateParams& p = {});
+
 // Section 6: from `start`, repeatedly pick the candidate whose mapped start is
 // nearest the current end point, produce its trajectory (robot with the
 // candidate's ic), Map it, contract it to the end point and append it, until

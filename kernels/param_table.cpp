@@ -32,8 +32,9 @@ using Kind = ParamInfo::Kind;
 std::vector<ParamInfo> make_table() {
   std::vector<ParamInfo> t = {
       CW_CHOICE(planner, Planner,
-                "planner: Arnold flow (with the switches below), Logistic map only, or Chebyshev map (seed 001)",
-                "arnold", "logistic", "chebyshev"),
+                "planner: Arnold flow (with the switches below), Logistic map only, Chebyshev map (seed 001) "
+                "or Arnold contraction (seed 003)",
+                "arnold", "logistic", "chebyshev", "contraction"),
       CW_INT(index_switching, 0, 1, "orientation control: 1 switches DSindex when coverage stalls"),
       CW_INT(switch_min_new, 0, 1e9, "a segment adding at most this many cells counts as stalled"),
       CW_INT(map_zoning, 0, 1, "map zoning: 1 runs MapZoning when Eq. 5 fails"),
@@ -58,6 +59,11 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(step, 1e-4, 1e3, false, "Chebyshev robot step between interpolated points, m"),
       CW_INT(loop_subgoals, 1, 1e9, "Chebyshev sub-goals per large loop (split over the rectangles by area)"),
       CW_INT(max_subgoals, 0, 9.007199254740992e15, "end a Chebyshev run after this many sub-goals (0: no limit)"),
+      CW_CHOICE(c3_mode, ContractionMode,
+                "contraction planner: one Map-compressed trajectory, the complete-coverage loop, or mirror mapping",
+                "map", "loop", "mirror"),
+      CW_INT(c3_n, 1, 1e8, "contraction planner: RK2 steps of the trajectory (map, mirror)"),
+      CW_REAL(c3_ic_grid, 0.05, 10, false, "contraction loop: step of the Arnold initial-state grid of candidates"),
       CW_REAL(ic_jitter, 0, 1, false, "perturb ic uniformly in +-ic_jitter (seeded by seed)"),
       CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
       CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
@@ -150,6 +156,7 @@ std::string check_ranges(const RunParams& p) {
 std::string variant_name(const RunParams& p) {
   if (p.planner == Planner::logistic) return "logistic";
   if (p.planner == Planner::chebyshev) return "chebyshev";
+  if (p.planner == Planner::contraction) return "contraction";
   std::string s;
   auto add = [&](const char* part) {
     if (!s.empty()) s += '+';
@@ -166,6 +173,15 @@ const char* to_string(Planner v) {
     case Planner::arnold: return "arnold";
     case Planner::logistic: return "logistic";
     case Planner::chebyshev: return "chebyshev";
+    case Planner::contraction: return "contraction";
+  }
+  return "?";
+}
+const char* to_string(ContractionMode v) {
+  switch (v) {
+    case ContractionMode::map: return "map";
+    case ContractionMode::loop: return "loop";
+    case ContractionMode::mirror: return "mirror";
   }
   return "?";
 }

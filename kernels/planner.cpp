@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "chebyshev_run.hpp"
+#include "contraction_run.hpp"
 #include "planner_run.hpp"
 #include "coverage_grid.hpp"
 #include "metrics.hpp"
@@ -36,6 +37,7 @@ std::string validate_run(const RunParams& p, const Environment& env) {
     return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") lies inside obstacle #" +
            std::to_string(k) + " of environment '" + env.name + "'";
   if (p.planner == Planner::chebyshev) return validate_chebyshev(p, env);
+  if (p.planner == Planner::contraction) return validate_contraction(p, env);
   return {};
 }
 
@@ -71,6 +73,7 @@ RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* tra
   std::optional<CoverageGrid> grid;
   if (!prepare_run(p, env, grid, r)) return r;
   if (p.planner == Planner::chebyshev) run_chebyshev(p, env, *grid, r, trace);
+  else if (p.planner == Planner::contraction) run_contraction(p, env, *grid, r, trace);
   else PlannerRun(p, env, *grid, r, trace).run();
   conclude_run(*grid, r);
   return r;

@@ -7,12 +7,15 @@
 
 namespace chaosweep {
 
-enum class Planner { arnold, logistic, chebyshev };
+enum class Planner { arnold, logistic, chebyshev, contraction };
 enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
 enum class ZoneGoal { free_cell, midpoint };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
+// Seed 003: one mapped trajectory, the complete-coverage loop of contracted
+// sections, or the mirror-mapping baseline.
+enum class ContractionMode { map, loop, mirror };
 // Seed 001: how the Chebyshev orbit is flattened before it becomes a sub-goal.
 enum class ChebTransform { none, arcsine, arccosine };
 
@@ -65,6 +68,15 @@ struct RunParams {
   int loop_subgoals = 200;        // sub-goals per large loop, split over the rectangles by area
   std::int64_t max_subgoals = 0;  // end the run after this many sub-goals (0: no limit)
 
+  // Contraction planner (seed 003): the Arnold robot (A, B, C, ic, ds_index,
+  // v, dt) integrated by RK2 for c3_n steps and Map-compressed onto the
+  // workplace (map), chained by the contraction transformation until dc
+  // with candidates from an ic grid of step c3_ic_grid (loop), or kept in by
+  // mirror mapping at the walls (mirror).
+  ContractionMode c3_mode = ContractionMode::map;
+  int c3_n = 800;
+  double c3_ic_grid = 1.0;
+
   // Chaotic spread (SPEC 1): ic perturbed uniformly in +-ic_jitter per
   // coordinate, drawn from `seed`.
   double ic_jitter = 0.0;
@@ -92,6 +104,7 @@ struct RunResult {
   std::int64_t transit_attempts = 0;  // transit points pushed out of an obstacle (Eq. 8)
   int final_ds_index = 0;
   std::int64_t subgoals = 0;        // Chebyshev sub-goals reached
+  std::int64_t reflections = 0;     // seed 003 mirror mapping
   double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
   std::string message;           // why a run is invalid / errored
 };
@@ -105,6 +118,7 @@ const char* to_string(Boundary);
 const char* to_string(Integrator);
 const char* to_string(Sampling);
 const char* to_string(ChebTransform);
+const char* to_string(ContractionMode);
 const char* to_string(Status);
 
 }  // namespace chaosweep

@@ -255,6 +255,49 @@ TEST(Tables, Seed001NeedsNoResultsAndShowsThePapersValues) {
   EXPECT_NE(bad.err.find("give one or more result files"), std::string::npos) << bad.err;
 }
 
+TEST(Tables, Seed003ComparesTablesOneToThreeLoopAndMirrorWithThePaper) {
+  TempDir dir;
+  // experiments/seed003.toml in miniature: the same parts, fewer values.
+  test::write_file(dir.file("s.toml"), R"(
+[fixed]
+planner = "contraction"
+size = 20
+sr = 1
+A = 1
+B = 0.5
+C = 0.5
+ic = [4, 3.5, 0]
+[[part]]
+name = "table1"
+fixed = { c3_mode = "map", c3_n = 800 }
+[[part.zip]]
+start = [[0, 0], [8, 8]]
+[part.axes]
+ds_index = [1, 2, 3]
+[[part]]
+name = "table3"
+fixed = { c3_mode = "map", start = [10, 10], ds_index = 3, c3_n = 800 }
+[[part]]
+name = "loop"
+fixed = { c3_mode = "loop", start = [10, 10], ds_index = 3 }
+[[part]]
+name = "mirror"
+fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
+)");
+  auto r = test::run_chaosweep("sweep " + dir.file("s.toml") + " -o " + dir.file("r.h5") + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run_chaosweep("table seed003 " + dir.file("r.h5") + " --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Heading z from (8, 8) at n = 800: ours 30.75% (any start: docs/seed003.md), paper 49%.
+  EXPECT_NE(r.out.find("Table 1,\"(8, 8)\",\"coverage % at n = 800, heading z\",30.75,49.00"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 2,heading z,mean coverage %,30.750,47.600"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 3,n = 800,\"coverage % from (10, 10), heading z\",30.75,54.50"), std::string::npos);
+  EXPECT_NE(r.out.find("Section 6,ic grid step 1,sections,8,6"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Mirror mapping,n = 779,coverage %,16.75,16.75"), std::string::npos) << r.out;
+  r = test::run_chaosweep("table seed003 " + dir.file("r.h5") + " --where label=nothing");
+  EXPECT_EQ(r.exit_code, 2);
+}
+
 TEST(Grouping, QuantileInterpolatesLikeNumpy) {
   EXPECT_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
   EXPECT_EQ(quantile({1, 2, 3, 4}, 0.25), 1.75);

@@ -9,6 +9,8 @@
 #include <numeric>
 
 #include "contraction.hpp"
+#include "planner.hpp"
+#include "test_util.hpp"
 
 using namespace chaosweep;
 using namespace chaosweep::seed003;
@@ -24,23 +26,6 @@ Seed003Robot straight_robot(double heading) {
   r.A = r.B = r.C = 0.0;
   r.ic = {0.0, 0.0, heading};
   return r;
-}
-
-// Algorithm 1 with the start point seeding the Arnold state, ic = (a, b, 0)
-// for (a, b) on a grid of [0, 10]^2 (docs/seed003_notes.md: in the literal
-// model the start point changes nothing after Map, and no start reaches the
-// 40% threshold).
-std::vector<Candidate> ic_grid_candidates(double step, const Workplace& wp) {
-  std::vector<Candidate> out;
-  const int k = int(std::lround(10.0 / step));
-  for (int i = 0; i <= k; ++i)
-    for (int j = 0; j <= k; ++j) {
-      Seed003Robot r;
-      r.ic = {i * step, j * step, 0.0};
-      const CandidateSweep s = candidate_sweep(r, {i * step, j * step}, wp);
-      if (s.kept) out.insert(out.end(), s.samples.begin(), s.samples.end());
-    }
-  return out;
 }
 
 void print_sections(const CompleteCoverage& cc) {
@@ -140,7 +125,7 @@ TEST(Seed003Coverage, SegmentsCoverEveryCellCrossedPointsOnlyTheirOwn) {
   Workplace wp;
   const std::vector<Point> path{{0.5, 0.5}, {3.5, 0.5}};
   EXPECT_DOUBLE_EQ(coverage_rate(path, wp), 4.0 / 400.0);
-  wp.sampling = Sampling::points;
+  wp.sampling = seed003::Sampling::points;
   EXPECT_DOUBLE_EQ(coverage_rate(path, wp), 2.0 / 400.0);
 }
 
@@ -239,7 +224,7 @@ TEST(Seed003Candidates, SweepGivesTwelveSamplesAndThePaperRobotMissesTheThreshol
 
 TEST(Seed003CompleteCoverage, LoopReaches90PercentAsOneContinuousPath) {
   const Workplace wp;
-  const std::vector<Candidate> cands = ic_grid_candidates(1.0, wp);
+  const std::vector<Candidate> cands = ic_grid_candidates(Seed003Robot{}, 1.0, wp);
   ASSERT_FALSE(cands.empty());
   const CompleteCoverage cc = complete_coverage(Seed003Robot{}, cands, {10, 10}, wp, 0.90, 30);
   EXPECT_TRUE(cc.reached);
@@ -404,10 +389,72 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
 TEST(Seed003Report, DISABLED_IcGridLoops) {
   const Workplace wp;
   for (double step : {1.0, 0.5, 0.25, 0.1}) {
-    const std::vector<Candidate> cands = ic_grid_candidates(step, wp);
+    const std::vector<Candidate> cands = ic_grid_candidates(Seed003Robot{}, step, wp);
     const CompleteCoverage cc = complete_coverage(Seed003Robot{}, cands, {10, 10}, wp, 0.90, 30);
     std::printf("ic grid step %.2f: %zu candidates, %zu sections, n = %ld, coverage %.2f%%, reached %d\n", step,
                 cands.size(), cc.sections.size(), cc.iterations, 100.0 * cc.coverage, int(cc.reached));
     print_sections(cc);
   }
+}
+
+// ------------------------------------------------ in the common model
+
+namespace {
+
+chaosweep::RunParams seed003_run(chaosweep::ContractionMode mode) {
+  chaosweep::RunParams p;
+  p.planner = chaosweep::Planner::contraction;
+  p.c3_mode = mode;
+  p.A = 1, p.B = 0.5, p.C = 0.5;
+  p.ic_x = 4, p.ic_y = 3.5, p.ic_z = 0;
+  p.start_x = p.start_y = 10;
+  p.sr = 1;
+  return p;
+}
+
+class PathSink : public chaosweep::TraceSink {
+ public:
+  void point(const chaosweep::TracePoint& q) override { pts.push_back(q); }
+  std::vector<chaosweep::TracePoint> pts;
+};
+
+}  // namespace
+
+TEST(ContractionPlanner, MapModeCoversWhatTheKernelsMappedPathCovers) {
+  const chaosweep::Environment env = chaosweep::test::square_map(20);
+  const chaosweep::RunResult r = chaosweep::run_planner(seed003_run(chaosweep::ContractionMode::map), env);
+  // The common grid agrees with the kernel's own coverage rate (Eqs. 10-12).
+  const Workplace wp;
+  EXPECT_DOUBLE_EQ(r.final_coverage, coverage_rate(map_to_workplace(seed003_trajectory({10, 10}, 800), wp), wp));
+  EXPECT_EQ(r.steps, 800);
+  EXPECT_EQ(r.status, chaosweep::Status::timeout);  // 30.75% < 90%
+}
+
+TEST(ContractionPlanner, LoopReachesDcAsOneContinuousPathInsideTheWorkplace) {
+  const chaosweep::Environment env = chaosweep::test::square_map(20);
+  PathSink sink;
+  const chaosweep::RunResult r = chaosweep::run_planner(seed003_run(chaosweep::ContractionMode::loop), env, &sink);
+  ASSERT_EQ(r.status, chaosweep::Status::ok) << r.message;
+  EXPECT_GE(r.final_coverage, 0.9);
+  EXPECT_GE(r.segments, 2);  // sections
+  EXPECT_GT(r.coverage_time, 0);
+  ASSERT_FALSE(sink.pts.empty());
+  EXPECT_EQ(sink.pts.front().x, 10);
+  EXPECT_EQ(sink.pts.front().y, 10);
+  for (const auto& q : sink.pts) ASSERT_TRUE(q.x >= 0 && q.x <= 20 && q.y >= 0 && q.y <= 20) << q.x << ", " << q.y;
+  // A section starts where the previous one ended: no jump longer than one
+  // RK2 step could make after contraction (the map scales by at most 20/1).
+  for (std::size_t i = 1; i < sink.pts.size(); ++i)
+    ASSERT_LT(std::hypot(sink.pts[i].x - sink.pts[i - 1].x, sink.pts[i].y - sink.pts[i - 1].y), 3.0) << i;
+}
+
+TEST(ContractionPlanner, MirrorModeCountsReflectionsAndObstaclesAreRefused) {
+  chaosweep::RunParams p = seed003_run(chaosweep::ContractionMode::mirror);
+  p.c3_n = 779;
+  const chaosweep::RunResult r = chaosweep::run_planner(p, chaosweep::test::square_map(20));
+  EXPECT_EQ(r.reflections, 87);
+  EXPECT_DOUBLE_EQ(r.final_coverage, 0.1675);  // the paper's 16.75% (Fig. 16b)
+  const chaosweep::RunResult bad = chaosweep::run_planner(p, chaosweep::test::square_map(20, {{1, 1, 2, 2}}));
+  EXPECT_EQ(bad.status, chaosweep::Status::invalid);
+  EXPECT_NE(bad.message.find("obstacle"), std::string::npos) << bad.message;
 }
