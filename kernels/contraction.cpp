@@ -42,7 +42,7 @@ double clamp(double x, double lo, double hi) { return std::min(std::max(x, lo), 
 // the common form of RK2 in the textbooks this group cites is Heun's
 // (improved Euler): y+ = y + h/2 (K1 + K2), K1 = f(y), K2 = f(y + h K1).
 // The midpoint rule is the other reading, kept as an option. Neither
-// reproduces Tables 1-3 (docs/seed003_notes.md); both give Fig. 16a-b
+// reproduces Tables 1-3 (docs/seed003.md); both give Fig. 16a-b
 // exactly, and Heun is the closer on Fig. 16c-d (500 and 1500 reflections
 // reached at n = 3181 and 7429, midpoint 2470 and 7940; paper 3401, 7121).
 // The state is wrapped into [-pi, pi] after each step: the right-hand side
@@ -176,7 +176,7 @@ CandidateSweep candidate_sweep(const Seed003Robot& robot, Point start, const Wor
 
 // Section 6 says only "a start point nearer Trej_end is selected from the
 // candidate set". Two rules are added, both for dead ends the paper does not
-// meet (docs/seed003_notes.md):
+// meet (docs/seed003.md):
 // - The candidate used in the previous section is skipped. Taken literally
 //   (the nearest, always) the loop can lock into a two-cycle: in this model
 //   every start point gives the same mapped start for a given n, so a set

@@ -5,7 +5,7 @@
 // transformation of Eqs. 13-20 that links one trajectory to the end of the
 // previous one, the complete-coverage loop of Section 6 and the mirror
 // mapping it is compared with. Every reconstruction of a lost equation or
-// figure is stated where it is made; docs/seed003_notes.md lists them all
+// figure is stated where it is made; docs/seed003.md lists them all
 // with the numbers they give beside the paper's.
 //
 // Note the model's symmetry: the heading comes from the Arnold state alone,

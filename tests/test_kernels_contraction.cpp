@@ -292,7 +292,7 @@ TEST(Seed003Mirror, KeepsEveryPointInTheWorkplaceAndMatchesFig16ab) {
 }
 
 // Prints our numbers beside the paper's Tables 1-3, Section 6 (the paper's
-// robot alone) and Fig. 16 (docs/seed003_notes.md); checks only loose
+// robot alone) and Fig. 16 (docs/seed003.md); checks only loose
 // properties. The ic-grid loops are in DISABLED_IcGridLoops below.
 TEST(Seed003Report, PrintsTablesBesideThePaper) {
   const Workplace wp;
@@ -323,7 +323,7 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
     stats(t1[h], 10, m1, s1);
     std::printf("  %c: mean %.3f sd %.4f | paper mean %.3f sd %.4f\n", "xyz"[h], m0, s0, m1, s1);
   }
-  // The other reading (docs/seed003_notes.md): the start point seeds the
+  // The other reading (docs/seed003.md): the start point seeds the
   // Arnold state, ic = (s, s, 0), which makes the rows differ.
   std::printf("Table 1/2 with ic = (s, s, 0): start | ours x y z\n");
   for (int s = 0; s < 10; ++s) {
