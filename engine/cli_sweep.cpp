@@ -64,7 +64,8 @@ Shard parse_shard(const std::string& text) {
 void add_sweep_command(CLI::App& app, std::function<int()>& action) {
   auto* cmd = app.add_subcommand("sweep", "Run every run of a sweep spec (or one shard) and write the results to HDF5");
   cmd->footer(
-      "The spec's axes are expanded as a Cartesian product (first axis slowest); each run is\n"
+      "The spec's axes are expanded as a Cartesian product (first axis slowest; a spec with\n"
+      "[[part]]s runs each part's product in turn, run_ids following on); each run is\n"
       "one row of /runs in OUT, in run_id order. Rows go to OUT.partial, a batch at a time\n"
       "(the file is closed between batches, so a killed sweep leaves every finished batch);\n"
       "OUT appears only when the sweep completes. SIGINT/SIGTERM finish the runs in flight,\n"
