@@ -33,8 +33,8 @@ std::vector<ParamInfo> make_table() {
   std::vector<ParamInfo> t = {
       CW_CHOICE(planner, Planner,
                 "planner: Arnold flow (with the switches below), Logistic map only, Chebyshev map (seed 001) "
-                "or Arnold contraction (seed 003)",
-                "arnold", "logistic", "chebyshev", "contraction"),
+                "Arnold contraction (seed 003) or bouncing robot (seed 002)",
+                "arnold", "logistic", "chebyshev", "contraction", "bouncing"),
       CW_INT(index_switching, 0, 1, "orientation control: 1 switches DSindex when coverage stalls"),
       CW_INT(switch_min_new, 0, 1e9, "a segment adding at most this many cells counts as stalled"),
       CW_INT(map_zoning, 0, 1, "map zoning: 1 runs MapZoning when Eq. 5 fails"),
@@ -56,7 +56,7 @@ std::vector<ParamInfo> make_table() {
       CW_CHOICE(cheb_transform, ChebTransform, "transform of the Chebyshev orbit before mapping (Eqs. 4-5)",
                 "none", "arcsine", "arccosine"),
       CW_REAL(radius, 0, 1e3, false, "Chebyshev robot radius, m (edge expansion)"),
-      CW_REAL(step, 1e-4, 1e3, false, "Chebyshev robot step between interpolated points, m"),
+      CW_REAL(step, 1e-4, 1e3, false, "robot step, m (Chebyshev: between interpolated points; bouncing: per move)"),
       CW_INT(loop_subgoals, 1, 1e9, "Chebyshev sub-goals per large loop (split over the rectangles by area)"),
       CW_INT(max_subgoals, 0, 9.007199254740992e15, "end a Chebyshev run after this many sub-goals (0: no limit)"),
       CW_CHOICE(c3_mode, ContractionMode,
@@ -64,6 +64,15 @@ std::vector<ParamInfo> make_table() {
                 "map", "loop", "mirror"),
       CW_INT(c3_n, 1, 1e8, "contraction planner: RK2 steps of the trajectory (map, mirror)"),
       CW_REAL(c3_ic_grid, 0.05, 10, false, "contraction loop: step of the Arnold initial-state grid of candidates"),
+      CW_REAL(bounce_phi1, 0, 360, false, "bouncing robot: policy 1's turn at a bump, degrees counter-clockwise"),
+      CW_REAL(bounce_phi2, 0, 360, false, "bouncing robot: policy 2's turn, degrees"),
+      CW_REAL(bounce_phi3, 0, 360, false, "bouncing robot: policy 3's turn, degrees"),
+      CW_REAL(bounce_alpha1, 0, 1, false, "bouncing robot: weight of policy 1 in the mixture"),
+      CW_REAL(bounce_alpha2, 0, 1, false, "bouncing robot: weight of policy 2"),
+      CW_REAL(bounce_alpha3, 0, 1, false, "bouncing robot: weight of policy 3"),
+      CW_REAL(bounce_eps, 0, 180, false, "bouncing robot: rotation error bound eps, degrees"),
+      CW_REAL(bounce_r, 0, 1, false, "bouncing robot: probability the rotation is exact"),
+      CW_REAL(bounce_heading, -360, 360, false, "bouncing robot: initial heading, degrees"),
       CW_REAL(ic_jitter, 0, 1, false, "perturb ic uniformly in +-ic_jitter (seeded by seed)"),
       CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
       CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
@@ -157,6 +166,7 @@ std::string variant_name(const RunParams& p) {
   if (p.planner == Planner::logistic) return "logistic";
   if (p.planner == Planner::chebyshev) return "chebyshev";
   if (p.planner == Planner::contraction) return "contraction";
+  if (p.planner == Planner::bouncing) return "bouncing";
   std::string s;
   auto add = [&](const char* part) {
     if (!s.empty()) s += '+';
@@ -174,6 +184,7 @@ const char* to_string(Planner v) {
     case Planner::logistic: return "logistic";
     case Planner::chebyshev: return "chebyshev";
     case Planner::contraction: return "contraction";
+    case Planner::bouncing: return "bouncing";
   }
   return "?";
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "bouncing_run.hpp"
 #include "chebyshev_run.hpp"
 #include "contraction_run.hpp"
 #include "planner_run.hpp"
@@ -38,6 +39,7 @@ std::string validate_run(const RunParams& p, const Environment& env) {
            std::to_string(k) + " of environment '" + env.name + "'";
   if (p.planner == Planner::chebyshev) return validate_chebyshev(p, env);
   if (p.planner == Planner::contraction) return validate_contraction(p, env);
+  if (p.planner == Planner::bouncing) return validate_bouncing(p);
   return {};
 }
 
@@ -74,6 +76,7 @@ RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* tra
   if (!prepare_run(p, env, grid, r)) return r;
   if (p.planner == Planner::chebyshev) run_chebyshev(p, env, *grid, r, trace);
   else if (p.planner == Planner::contraction) run_contraction(p, env, *grid, r, trace);
+  else if (p.planner == Planner::bouncing) run_bouncing(p, env, *grid, r, trace);
   else PlannerRun(p, env, *grid, r, trace).run();
   conclude_run(*grid, r);
   return r;

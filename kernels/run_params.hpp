@@ -7,7 +7,7 @@
 
 namespace chaosweep {
 
-enum class Planner { arnold, logistic, chebyshev, contraction };
+enum class Planner { arnold, logistic, chebyshev, contraction, bouncing };
 enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
@@ -77,6 +77,15 @@ struct RunParams {
   int c3_n = 800;
   double c3_ic_grid = 1.0;
 
+  // Bouncing robot (seed 002): drives straight in steps of `step`; at each
+  // bump it picks policy i with probability alpha_i (the mixture) and turns
+  // counter-clockwise by phi_i, exactly with probability bounce_r, else
+  // uniformly within +-bounce_eps; draws seeded by `seed`.
+  double bounce_phi1 = 30, bounce_phi2 = 75, bounce_phi3 = 315;  // degrees
+  double bounce_alpha1 = 0.221, bounce_alpha2 = 0.280, bounce_alpha3 = 0.499;
+  double bounce_eps = 5, bounce_r = 0.8;
+  double bounce_heading = 0;  // initial heading, degrees
+
   // Chaotic spread (SPEC 1): ic perturbed uniformly in +-ic_jitter per
   // coordinate, drawn from `seed`.
   double ic_jitter = 0.0;
@@ -104,7 +113,7 @@ struct RunResult {
   std::int64_t transit_attempts = 0;  // transit points pushed out of an obstacle (Eq. 8)
   int final_ds_index = 0;
   std::int64_t subgoals = 0;        // Chebyshev sub-goals reached
-  std::int64_t reflections = 0;     // seed 003 mirror mapping
+  std::int64_t reflections = 0;     // seed 003 mirror mapping; seed 002 bumps
   double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
   std::string message;           // why a run is invalid / errored
 };

@@ -21,6 +21,8 @@
 #include <numeric>
 
 #include "bouncing_cells.hpp"
+#include "planner.hpp"
+#include "test_util.hpp"
 #include "markov_chain.hpp"
 #include "policy_mixture.hpp"
 #include "roadmap.hpp"
@@ -329,4 +331,64 @@ TEST(DISABLED_Seed002Paper, MixtureForThirtySeventyFiveThreeFifteen) {
     std::printf("single policy %5.1f: residual %.6g\n", phis[i], mixture_residual(Pi, b, Eigen::VectorXd::Unit(3, i)));
   std::printf("%.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   EXPECT_NEAR(m.alpha.sum(), 1.0, 1e-12);
+}
+
+// ---------------------------------------- the bouncing robot in the common model
+
+namespace {
+
+chaosweep::RunParams bouncing(double a1, double a2, double a3) {
+  chaosweep::RunParams p;
+  p.planner = chaosweep::Planner::bouncing;
+  p.bounce_alpha1 = a1, p.bounce_alpha2 = a2, p.bounce_alpha3 = a3;
+  p.start_x = p.start_y = 1;
+  p.step = 0.25;
+  p.max_time = 20000;
+  return p;
+}
+
+class Points : public chaosweep::TraceSink {
+ public:
+  void point(const chaosweep::TracePoint& q) override { pts.push_back(q); }
+  std::vector<chaosweep::TracePoint> pts;
+};
+
+}  // namespace
+
+TEST(BouncingPlanner, TheMixtureCoversTheMapAndTheRunIsAPureFunctionOfItsSeed) {
+  const auto env = seed002_map();
+  chaosweep::RunParams p = bouncing(0.221, 0.280, 0.499);
+  const auto a = chaosweep::run_planner(p, env), b = chaosweep::run_planner(p, env);
+  ASSERT_EQ(a.status, chaosweep::Status::ok) << a.message;
+  EXPECT_EQ(a.coverage_time, b.coverage_time);
+  EXPECT_EQ(a.reflections, b.reflections);
+  EXPECT_GT(a.reflections, 10);
+  p.seed = 1;
+  EXPECT_NE(chaosweep::run_planner(p, env).coverage_time, a.coverage_time);
+}
+
+TEST(BouncingPlanner, NeverEntersAnObstacleOrLeavesTheMap) {
+  const auto env = seed002_map();
+  Points sink;
+  chaosweep::run_planner(bouncing(0.221, 0.280, 0.499), env, &sink);
+  ASSERT_GT(sink.pts.size(), 1000u);
+  for (const auto& q : sink.pts) {
+    ASSERT_TRUE(q.x > 0 && q.x < 15 && q.y > 0 && q.y < 15) << q.x << ", " << q.y;
+    for (const auto& o : env.obstacles) ASSERT_FALSE(q.x >= o.x0 && q.x <= o.x1 && q.y >= o.y0 && q.y <= o.y1);
+  }
+}
+
+TEST(BouncingPlanner, AnExactSinglePolicyIsPeriodicAndNeverCoversTheSquare) {
+  // phi = 90 without error from heading 0 in an empty 10 m square: right to
+  // the wall, up, left, down, right... one rectangle loop for ever (a
+  // persistent group that is a cycle), far below 90%.
+  chaosweep::RunParams p = bouncing(1, 0, 0);
+  p.bounce_phi1 = 90;
+  p.bounce_eps = 0;
+  p.max_time = 5000;
+  const auto r = chaosweep::run_planner(p, chaosweep::test::square_map(10));
+  EXPECT_EQ(r.status, chaosweep::Status::timeout);
+  EXPECT_LT(r.final_coverage, 0.5);
+  p.bounce_alpha1 = 0;
+  EXPECT_EQ(chaosweep::run_planner(p, chaosweep::test::square_map(10)).status, chaosweep::Status::invalid);
 }
