@@ -9,6 +9,7 @@
 
 #include "environment_loader.hpp"
 #include "h5_compare.hpp"
+#include "all_pairs_plans.hpp"
 #include "h5_store.hpp"
 #include "json_writer.hpp"
 #include "result_columns.hpp"
@@ -656,4 +657,23 @@ TEST(Json, WritesEveryColumnAndNanAsNull) {
   EXPECT_NE(j.find("\"status\":\"timeout\""), std::string::npos) << j;
   EXPECT_NE(j.find("\"dt\":0.1,"), std::string::npos) << j;  // shortest round-trip text
   EXPECT_EQ(json_escape("a\"b\\c\n"), "a\\\"b\\\\c\\n");
+}
+
+TEST(AllPairsPlans, ParallelRowsEqualTheSerialPlansWhateverTheThreads) {
+  using namespace seed002;
+  Environment env;
+  env.lx = env.ly = 4;
+  env.obstacles = {{1, 1, 2, 3}};
+  const CellGrid g = make_grid(env, 1.0, 8);
+  const Roadmap rm = build_roadmap(g, {90.0, 225.0}, 1.0, 2.0);
+  std::vector<int> sources;
+  for (int c = 0; c < g.num_configs(); c += 3) sources.push_back(c);
+  const auto one = all_pairs_plans(rm, sources, 1), two = all_pairs_plans(rm, sources, 2);
+  ASSERT_EQ(one.size(), sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const PlanRow serial = all_plans_from(rm, sources[i]);
+    EXPECT_EQ(one[i].plans, serial.plans) << i;
+    EXPECT_EQ(two[i].plans, serial.plans) << i;
+    EXPECT_EQ(two[i].weights, serial.weights) << i;
+  }
 }
