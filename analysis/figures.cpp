@@ -6,12 +6,14 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "grouping.hpp"
 #include "chebyshev_analysis.hpp"
 #include "chebyshev_map.hpp"
 #include "param_table.hpp"
 #include "rect_decomposition.hpp"
+#include "seed002.hpp"
 #include "replay.hpp"
 #include "tables.hpp"
 #include "text_table.hpp"
@@ -406,9 +408,49 @@ FigureOutput cheb_lyapunov(const FigureOptions& opt, const std::string& path) {
   return out;
 }
 
+// Seed 002: the best mixture's limiting distribution over the position cells
+// as a heatmap (relative to uniform: 1 = the uniform share); the CSV holds
+// every policy's column too.
+FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
+  Seed002Options so;
+  so.bins = opt.bins;
+  const Seed002Analysis a = analyse_seed002(so);
+  const seed002::CellGrid& g = a.grid;
+  const Eigen::VectorXd mix = a.Pi * a.alpha;
+  HeatmapPlot p;
+  p.title = "Seed 002: limiting distribution of the best mixture (x uniform)";
+  p.xlabel = "x (m)";
+  p.ylabel = "y (m)";
+  p.zlabel = "pi / uniform";
+  for (int i = 0; i < g.nx; ++i) p.xs.push_back((i + 0.5) * g.cell);
+  for (int j = 0; j < g.ny; ++j) p.ys.push_back((j + 0.5) * g.cell);
+  p.z.assign(std::size_t(g.nx * g.ny), nan);
+  TextTable csv;
+  csv.header = {"x", "y", "mixture"};
+  for (double phi : so.angles) csv.header.push_back("policy_" + format_number(phi));
+  for (int f = 0; f < g.num_free(); ++f) {
+    const int cell = g.free_cells[std::size_t(f)];
+    const double rel = mix(f) * g.num_free();
+    p.z[std::size_t(cell)] = rel;
+    const auto [cx, cy] = g.centre(f);
+    std::vector<std::string> row{format_number(cx), format_number(cy), fmt_sig(mix(f), 6)};
+    for (Eigen::Index k = 0; k < a.Pi.cols(); ++k) row.push_back(fmt_sig(a.Pi(f, k), 6));
+    csv.add_row(std::move(row));
+  }
+  FigureOutput out{path, csv_beside(path), {}};
+  std::ostringstream alpha;
+  for (Eigen::Index k = 0; k < a.alpha.size(); ++k) alpha << (k ? ", " : "") << fmt_fixed(a.alpha(k), 3);
+  out.lines.push_back("alpha = (" + alpha.str() + "), ||Pi alpha - b|| = " + fmt_sig(a.residual, 4));
+  csv.write_csv_file(out.csv);
+  render(p, path, opt.size);
+  return out;
+}
+
 }  // namespace
 
-bool figure_needs_results(const std::string& name) { return name != "cheb_histogram" && name != "cheb_lyapunov"; }
+bool figure_needs_results(const std::string& name) {
+  return name != "cheb_histogram" && name != "cheb_lyapunov" && name != "seed002_limit";
+}
 
 std::string csv_beside(const std::string& image_path) {
   return std::filesystem::path(image_path).replace_extension(".csv").string();
@@ -416,7 +458,8 @@ std::string csv_beside(const std::string& image_path) {
 
 const std::vector<std::string>& figure_names() {
   static const std::vector<std::string> names{"fig6a",    "fig6b",          "heatmap",       "line",
-                                              "trajectory", "coverage", "cheb_histogram", "cheb_lyapunov"};
+                                              "trajectory", "coverage", "cheb_histogram", "cheb_lyapunov",
+                                              "seed002_limit"};
   return names;
 }
 
@@ -425,6 +468,7 @@ FigureOutput make_figure(const std::string& name, const ResultSet& rs, const Fig
   check_image_path(image_path);
   if (name == "cheb_histogram") return cheb_histogram(opt, image_path);
   if (name == "cheb_lyapunov") return cheb_lyapunov(opt, image_path);
+  if (name == "seed002_limit") return seed002_limit(opt, image_path);
   if (rs.rows() == 0) throw AnalysisError("the result files hold no runs");
   if (name == "fig6a") return fig6a(rs, opt, image_path);
   if (name == "fig6b") return fig6b(rs, opt, image_path);

@@ -19,6 +19,7 @@ struct FigureOptions {
   double bound = 0;                  // fig6b: time bound, s (0: the runs' max_time)
   std::vector<std::int64_t> runs;    // trajectory, coverage: run ids
   std::string by;                    // coverage: one run (the median) per value of this column
+  int bins = 360;                    // seed002_limit: orientation bins
   ImageSize size;
 };
 
@@ -41,6 +42,7 @@ FigureOutput make_figure(const std::string& name, const ResultSet& rs, const Fig
 const std::vector<std::string>& figure_names();
 // cheb_histogram, cheb_lyapunov: seed 001's map analysis, computed; no result file.
 bool figure_needs_results(const std::string& name);
+// seed002_limit: the best bouncing-policy mixture's limiting distribution (computed).
 
 // The CSV path written beside an image: the same path with .csv.
 std::string csv_beside(const std::string& image_path);

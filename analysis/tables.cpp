@@ -11,6 +11,7 @@
 #include "grouping.hpp"
 #include "param_table.hpp"
 #include "seed001.hpp"
+#include "seed002.hpp"
 #include "seed003.hpp"
 
 namespace chaosweep {
@@ -292,14 +293,19 @@ double tuple_score(const ResultSet& rs, const std::vector<std::size_t>& rows) {
 }
 
 const std::vector<std::string>& table_names() {
-  static const std::vector<std::string> names{"table1", "best", "summary", "seed001", "seed003"};
+  static const std::vector<std::string> names{"table1", "best", "summary", "seed001", "seed002", "seed003"};
   return names;
 }
 
-bool table_needs_results(const std::string& name) { return name != "seed001"; }
+bool table_needs_results(const std::string& name) { return name != "seed001" && name != "seed002"; }
 
 TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt) {
   if (name == "seed001") return seed001_table();
+  if (name == "seed002") {
+    Seed002Options o;
+    o.bins = opt.bins;
+    return seed002_table(o);
+  }
   if (rs.rows() == 0) throw AnalysisError("the result files hold no runs");
   if (name == "table1") return table1(rs, opt);
   if (name == "best") return best_table(rs, opt);

@@ -13,6 +13,7 @@ struct TableOptions {
   std::vector<std::string> params;  // parameter columns (best); empty: those that vary in a group
   int top = 5;                      // tuples per group (best)
   std::string paper;                // table1: CSV of the paper's values (row,paper_ct,paper_pr)
+  int bins = 360;                   // seed002: orientation bins
 };
 
 // table1: per Table 1 case (the run's label, else size/SR/env/variant), the

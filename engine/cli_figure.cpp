@@ -25,6 +25,8 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "              run of each value of --by COLUMN\n"
       "  cheb_histogram, cheb_lyapunov  seed 001's Chebyshev map: orbit histogram raw and\n"
       "              transformed; Lyapunov exponent over k (computed, no result file)\n"
+      "  seed002_limit  seed 002: the best bouncing-policy mixture's limiting distribution\n"
+      "              over the map (computed; --bins)\n"
       "Example: chaosweep figure fig6a out/fig6/results.h5 -o out/fig6/fig6a.png");
   struct Opts {
     std::string name, out, mark, size = "800x600";
@@ -45,6 +47,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
   cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column; line: one line per value");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
+  cmd->add_option("--bins", o->fig.bins, "seed002_limit: orientation bins")->check(CLI::Range(4, 3600));
   cmd->add_option("--size", o->size, "image size in pixels, WIDTHxHEIGHT")->capture_default_str();
   cmd->callback([o, stat, &action] {
     o->fig.stat_default = stat->count() == 0;

@@ -298,6 +298,28 @@ fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
   EXPECT_EQ(r.exit_code, 2);
 }
 
+TEST(Tables, Seed002GivesAMixtureOnTheSimplexAndThePlansByAngles) {
+  const auto r = test::run_chaosweep("table seed002 --bins 24 --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  double sum = 0;
+  std::istringstream in(r.out);
+  std::string line;
+  int alphas = 0;
+  while (std::getline(in, line))
+    if (line.rfind("mixture weight alpha,", 0) == 0) {
+      const std::string rest = line.substr(line.find(',', 21) + 1);
+      const double a = std::stod(rest.substr(0, rest.find(',')));
+      EXPECT_GE(a, 0.0) << line;
+      sum += a;
+      ++alphas;
+    }
+  EXPECT_EQ(alphas, 3);
+  EXPECT_NEAR(sum, 1.0, 2e-3);  // printed to 3 decimals
+  EXPECT_NE(r.out.find("mixture weight alpha,30 deg,"), std::string::npos);
+  EXPECT_NE(r.out.find(",0.221"), std::string::npos);  // the paper's, beside ours
+  EXPECT_NE(r.out.find("plans using 1 bouncing angle (%)"), std::string::npos) << r.out;
+}
+
 TEST(Grouping, QuantileInterpolatesLikeNumpy) {
   EXPECT_EQ(quantile({1, 2, 3, 4}, 0.5), 2.5);
   EXPECT_EQ(quantile({1, 2, 3, 4}, 0.25), 1.75);
@@ -434,6 +456,26 @@ TEST(ChebyshevFigures, HistogramAndLyapunovNeedNoResultsAndDrawTheirData) {
   const std::string csv = test::read_file(l.csv);
   EXPECT_NE(csv.find("\n6,1.7917"), std::string::npos) << csv;  // ln 6 = 1.79176
   expect_drawn(l.image, 800, 600);
+}
+
+TEST(Seed002Figures, LimitingDistributionHeatmapHasACellPerFreeCell) {
+  TempDir dir;
+  FigureOptions opt;
+  opt.bins = 24;
+  const FigureOutput f = make_figure("seed002_limit", ResultSet{}, opt, dir.file("lim.png"));
+  std::istringstream in(test::read_file(f.csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x,y,mixture,policy_30,policy_75,policy_315");
+  int rows = 0;
+  double sum = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    sum += std::stod(line.substr(line.find(',', line.find(',') + 1) + 1));
+  }
+  EXPECT_EQ(rows, 183);  // the map's free cells
+  EXPECT_NEAR(sum, 1.0, 1e-3);
+  expect_drawn(f.image, 800, 600);
 }
 
 // Trajectory and coverage figures replay real runs: a small sweep on a 12 m
