@@ -307,7 +307,7 @@ TEST(Seed002Roadmap, AllPlansFromOneSourceMarkUnreachableAndDiagonal) {
   EXPECT_EQ(std::count_if(row.weights.begin(), row.weights.end(), [](double w) { return w >= 0.0; }), 8);
 }
 
-// The seed002 notes' numbers (docs/seed002_notes.md). Several seconds, so not
+// The seed002 notes' numbers (docs/seed002.md). Several seconds, so not
 // in the suite; run with
 //   /tmp/bbuild/tests/test_kernels --gtest_also_run_disabled_tests --gtest_filter='*Seed002Paper*'
 TEST(DISABLED_Seed002Paper, MixtureForThirtySeventyFiveThreeFifteen) {
