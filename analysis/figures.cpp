@@ -416,9 +416,13 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   so.bins = opt.bins;
   const Seed002Analysis a = analyse_seed002(so);
   const seed002::CellGrid& g = a.grid;
-  const Eigen::VectorXd mix = a.Pi * a.alpha;
+  if (opt.policy < 0 || opt.policy > int(a.Pi.cols()))
+    throw AnalysisError("--policy must be 0 (the mixture) or 1.." + std::to_string(a.Pi.cols()));
+  const Eigen::VectorXd mix = opt.policy == 0 ? Eigen::VectorXd(a.Pi * a.alpha) : Eigen::VectorXd(a.Pi.col(opt.policy - 1));
   HeatmapPlot p;
-  p.title = "Seed 002: limiting distribution of the best mixture (x uniform)";
+  p.title = opt.policy == 0 ? "Seed 002: limiting distribution of the best mixture (x uniform)"
+                            : "Seed 002: limiting distribution of the " + format_number(so.angles[std::size_t(opt.policy - 1)]) +
+                                  "-degree policy (x uniform)";
   p.xlabel = "x (m)";
   p.ylabel = "y (m)";
   p.zlabel = "pi / uniform";
@@ -426,7 +430,7 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   for (int j = 0; j < g.ny; ++j) p.ys.push_back((j + 0.5) * g.cell);
   p.z.assign(std::size_t(g.nx * g.ny), nan);
   TextTable csv;
-  csv.header = {"x", "y", "mixture"};
+  csv.header = {"x", "y", opt.policy == 0 ? "mixture" : "shown_policy"};
   for (double phi : so.angles) csv.header.push_back("policy_" + format_number(phi));
   for (int f = 0; f < g.num_free(); ++f) {
     const int cell = g.free_cells[std::size_t(f)];

@@ -20,6 +20,7 @@ struct FigureOptions {
   std::vector<std::int64_t> runs;    // trajectory, coverage: run ids
   std::string by;                    // coverage: one run (the median) per value of this column
   int bins = 360;                    // seed002_limit: orientation bins
+  int policy = 0;                    // seed002_limit: 0 the mixture, i the i-th policy alone
   ImageSize size;
 };
 

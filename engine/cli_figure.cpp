@@ -48,6 +48,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column; line: one line per value");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--bins", o->fig.bins, "seed002_limit: orientation bins")->check(CLI::Range(4, 3600));
+  cmd->add_option("--policy", o->fig.policy, "seed002_limit: 0 the best mixture (default), i the i-th policy alone");
   cmd->add_option("--size", o->size, "image size in pixels, WIDTHxHEIGHT")->capture_default_str();
   cmd->callback([o, stat, &action] {
     o->fig.stat_default = stat->count() == 0;

@@ -476,6 +476,11 @@ TEST(Seed002Figures, LimitingDistributionHeatmapHasACellPerFreeCell) {
   EXPECT_EQ(rows, 183);  // the map's free cells
   EXPECT_NEAR(sum, 1.0, 1e-3);
   expect_drawn(f.image, 800, 600);
+  opt.policy = 2;  // the 75-degree policy alone
+  EXPECT_EQ(test::read_file(make_figure("seed002_limit", ResultSet{}, opt, dir.file("p2.png")).csv).substr(0, 20),
+            "x,y,shown_policy,pol");
+  opt.policy = 4;
+  EXPECT_THROW(make_figure("seed002_limit", ResultSet{}, opt, dir.file("p4.png")), AnalysisError);
 }
 
 // Trajectory and coverage figures replay real runs: a small sweep on a 12 m
