@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <toml++/toml.h>
+#include "toml.hpp"
 
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
@@ -64,7 +64,11 @@ struct ClusterPlan {
 ClusterPlan read_plan(const fs::path& dir) {
   const fs::path file = dir / "cluster.toml";
   if (!fs::exists(file)) throw std::runtime_error(dir.string() + " has no cluster.toml: not written by chaosweep slurm");
-  const toml::table t = toml::parse_file(file.string());
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  check_toml_text(text.str());
+  const toml::table t = toml::parse(text.str(), file.string());
   ClusterPlan p;
   p.spec = t["spec"].value_or(std::string());
   p.name = t["name"].value_or(std::string());

@@ -2,11 +2,12 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <cmath>
 #include <optional>
-#include <toml++/toml.h>
+#include "toml.hpp"
 
 #include "clutter.hpp"
 
@@ -35,11 +36,14 @@ std::pair<double, double> pair_of(const toml::node& n, const std::string& file, 
   return {number(*a->get(0), file, key), number(*a->get(1), file, key)};
 }
 
-Environment parse_file(const std::string& path, double size_x, double size_y,
+Environment parse_text(const std::string& text, const std::string& path, double size_x, double size_y,
                        std::optional<std::uint64_t> clutter_seed) {
   toml::table t;
   try {
-    t = toml::parse_file(path);
+    check_toml_text(text);
+    t = toml::parse(text, path);
+  } catch (const TomlInputError& e) {
+    fail(path, e.what());
   } catch (const toml::parse_error& e) {
     std::ostringstream os;
     os << e.description() << " at line " << e.source().begin.line;
@@ -148,7 +152,21 @@ Environment parse_file(const std::string& path, double size_x, double size_y,
   return env;
 }
 
+Environment parse_file(const std::string& path, double size_x, double size_y,
+                       std::optional<std::uint64_t> clutter_seed) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot read the environment file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_text(text.str(), path, size_x, size_y, clutter_seed);
+}
+
 }  // namespace
+
+Environment parse_environment(const std::string& text, const std::string& source_name, double size_x,
+                              double size_y) {
+  return parse_text(text, source_name, size_x, size_y, std::nullopt);
+}
 
 std::string find_environment_file(const std::string& name) {
   std::vector<std::string> dirs;

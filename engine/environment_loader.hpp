@@ -16,6 +16,10 @@ namespace chaosweep {
 // side is size_x x size_y unless the file fixes its own size.
 // Throws std::runtime_error naming the file and the offending key.
 Environment load_environment(const std::string& spec, double size_x, double size_y);
+// The same from the file's text (`source_name` for messages); for tools and
+// the fuzz target. Throws std::runtime_error naming the source and the key.
+Environment parse_environment(const std::string& text, const std::string& source_name, double size_x,
+                              double size_y);
 
 // Where environment names are looked up: $CHAOSWEEP_ENV_PATH (colon-separated)
 // then the source tree's experiments/envs.

@@ -6,7 +6,7 @@
 #include <map>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
+#include "toml.hpp"
 
 #include "param_table.hpp"
 #include "splitmix.hpp"
@@ -355,11 +355,14 @@ Axis parse_sample(const toml::table& t, const std::string& where, const KeyUse& 
 
 toml::table parse_toml(const std::string& text, const std::string& source_name) {
   try {
+    check_toml_text(text);
     return toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
     std::ostringstream os;
     os << e.description() << " (line " << e.source().begin.line << ")";
     fail(source_name, os.str());
+  } catch (const TomlInputError& e) {
+    fail(source_name, e.what());
   }
 }
 

@@ -677,3 +677,22 @@ TEST(AllPairsPlans, ParallelRowsEqualTheSerialPlansWhateverTheThreads) {
     EXPECT_EQ(two[i].weights, serial.weights) << i;
   }
 }
+
+TEST(SweepSpec, InputTheTomlParserCannotReadSafelyIsRefusedNamingTheLine) {
+  // Found by tests/fuzz: toml++ 3.3.0 has undefined behaviour on these.
+  for (const char* text : {"[[[1]]]", "[\x15", "a = 1\nb = 2 \xcc\x8e\n", "x = \"caf\xc3\xa9\"\n"}) {
+    try {
+      parse_sweep_spec(text, "bad.toml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const SpecError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
+    }
+  }
+  try {
+    parse_sweep_spec("a = 1\nb = 2 \xcc\x8e\n", "bad.toml");
+  } catch (const SpecError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2: the character U+030E"), std::string::npos) << e.what();
+  }
+  // Other UTF-8 (an em dash) in strings and comments stays fine.
+  EXPECT_NO_THROW(parse_sweep_spec("[sweep]\nname = \"a \xe2\x80\x94 b\" # \xe2\x80\x94\n", "ok.toml"));
+}
