@@ -73,7 +73,7 @@ FigureOutput heatmap_figure(const ResultSet& rs, const std::string& xcol, const 
   }
   p.mark = std::move(mark);
   FigureOutput out{path, csv_beside(path), {}};
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
 }
@@ -161,7 +161,7 @@ FigureOutput fig6b(const ResultSet& rs, const FigureOptions& opt, const std::str
   if (!std::isinf(mk.ct))
     p.mark = PlotMark{mk.ct, 100.0 * within / n,
                       tuple_text(mk.a, mk.b, mk.c) + ": " + fmt_fixed(100.0 * within / n, 1) + "%"};
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
 }
@@ -251,7 +251,7 @@ FigureOutput trajectory(const ResultSet& rs, const FigureOptions& opt, const std
     m.start = {rp.points.front().x, rp.points.front().y};
     m.end = {rp.points.back().x, rp.points.back().y};
   }
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(m, path, opt.size);
   return out;
 }
@@ -286,7 +286,7 @@ FigureOutput coverage(const ResultSet& rs, const FigureOptions& opt, const std::
     }
     p.series.push_back(std::move(s));
   }
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
 }
@@ -320,15 +320,7 @@ FigureOutput line_figure(const ResultSet& rs, const FigureOptions& opt, const st
     for (const Group& g : group_rows(rs, {opt.x}, s.rows)) {
       std::vector<double> v;
       for (std::size_t r : g.rows) v.push_back(rs.num(opt.y)[r]);
-      double y;
-      if (stat == "mean") {
-        y = 0;
-        for (double x : v) y += x / double(v.size());
-      } else if (stat == "min" || stat == "median" || stat == "max" || stat == "q1" || stat == "q3") {
-        y = quantile(v, stat == "min" ? 0 : stat == "q1" ? 0.25 : stat == "median" ? 0.5 : stat == "q3" ? 0.75 : 1);
-      } else {
-        throw AnalysisError("line: --stat must be one of min, q1, median, mean, q3, max");
-      }
+      const double y = value_statistic(std::move(v), stat);
       line.x.push_back(g.key_num[0]);
       line.y.push_back(y);
       csv.add_row({s.key[0], g.key[0], fmt_sig(y, 6), std::to_string(g.rows.size())});
@@ -336,7 +328,7 @@ FigureOutput line_figure(const ResultSet& rs, const FigureOptions& opt, const st
     p.series.push_back(std::move(line));
   }
   FigureOutput out{path, csv_beside(path), {}};
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
 }
@@ -375,7 +367,7 @@ FigureOutput cheb_histogram(const FigureOptions& opt, const std::string& path) {
   out.lines.push_back("chi-square vs flat (19 dof, 99.9% critical 43.8): raw " + fmt_sig(chi_square_uniform(raw), 5) +
                       ", arcsine-transformed " + fmt_sig(chi_square_uniform(flat), 5) +
                       "; raw vs the arcsine density: " + fmt_sig(chi_square_arcsine(raw), 5));
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
 }
@@ -403,7 +395,7 @@ FigureOutput cheb_lyapunov(const FigureOptions& opt, const std::string& path) {
   p.series = {std::move(raw), std::move(conj), std::move(eq7)};
   p.mark = PlotMark{6, std::log(6.0), "k = 6: ln 6 = 1.7918 (paper: 3.2147 after the transform)"};
   FigureOutput out{path, csv_beside(path), {}};
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
 }
@@ -445,7 +437,7 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   std::ostringstream alpha;
   for (Eigen::Index k = 0; k < a.alpha.size(); ++k) alpha << (k ? ", " : "") << fmt_fixed(a.alpha(k), 3);
   out.lines.push_back("alpha = (" + alpha.str() + "), ||Pi alpha - b|| = " + fmt_sig(a.residual, 4));
-  csv.write_csv_file(out.csv);
+  csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
 }

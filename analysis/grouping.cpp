@@ -56,20 +56,28 @@ double group_statistic(const ResultSet& rs, const std::vector<std::size_t>& rows
   if (stat == "ok_rate") return rows.empty() ? std::numeric_limits<double>::quiet_NaN() : double(ok.size()) / double(rows.size());
   std::vector<double> v;
   for (std::size_t r : ok) v.push_back(rs.num(column)[r]);
-  if (stat == "min") return quantile(v, 0.0);
-  if (stat == "q1") return quantile(v, 0.25);
-  if (stat == "median") return quantile(v, 0.5);
-  if (stat == "q3") return quantile(v, 0.75);
-  if (stat == "max") return quantile(v, 1.0);
+  try {
+    return value_statistic(std::move(v), stat);
+  } catch (const AnalysisError&) {
+    std::string list;
+    for (const std::string& n : statistic_names()) list += (list.empty() ? "" : ", ") + n;
+    throw AnalysisError("unknown statistic '" + stat + "' (allowed: " + list + ")");
+  }
+}
+
+double value_statistic(std::vector<double> v, const std::string& stat) {
+  if (stat == "min") return quantile(std::move(v), 0.0);
+  if (stat == "q1") return quantile(std::move(v), 0.25);
+  if (stat == "median") return quantile(std::move(v), 0.5);
+  if (stat == "q3") return quantile(std::move(v), 0.75);
+  if (stat == "max") return quantile(std::move(v), 1.0);
   if (stat == "mean") {
     if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
     double s = 0;
     for (double x : v) s += x;
     return s / double(v.size());
   }
-  std::string list;
-  for (const std::string& n : statistic_names()) list += (list.empty() ? "" : ", ") + n;
-  throw AnalysisError("unknown statistic '" + stat + "' (allowed: " + list + ")");
+  throw AnalysisError("unknown statistic '" + stat + "' (allowed: min, q1, median, mean, q3, max)");
 }
 
 std::vector<std::string> split_list(const std::string& s) {

@@ -30,6 +30,10 @@ double group_statistic(const ResultSet& rs, const std::vector<std::size_t>& rows
                        const std::string& column = "coverage_time");
 const std::vector<std::string>& statistic_names();
 
+// min, q1, median, mean, q3 or max of any values (NaN for none); throws
+// AnalysisError naming those for another name.
+double value_statistic(std::vector<double> v, const std::string& stat);
+
 // Splits "a,b,c" into its items (empty items dropped).
 std::vector<std::string> split_list(const std::string& s);
 

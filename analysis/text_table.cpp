@@ -96,7 +96,7 @@ void TextTable::write(std::ostream& os, TableFormat f) const {
   }
 }
 
-void TextTable::write_csv_file(const std::string& path) const {
+void TextTable::write_file(const std::string& path, TableFormat f) const {
   namespace fs = std::filesystem;
   const fs::path target(path);
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
@@ -104,7 +104,7 @@ void TextTable::write_csv_file(const std::string& path) const {
   {
     std::ofstream out(tmp);
     if (!out) throw AnalysisError("cannot write " + path);
-    write(out, TableFormat::csv);
+    write(out, f);
     out.flush();
     if (!out) throw AnalysisError("cannot write " + path + " (disk full?)");
   }

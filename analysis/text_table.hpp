@@ -19,8 +19,8 @@ struct TextTable {
 
   void add_row(std::vector<std::string> r);    // throws when the width is wrong
   void write(std::ostream& os, TableFormat f) const;
-  // Writes to `path` (CSV) atomically: a temporary file renamed at the end.
-  void write_csv_file(const std::string& path) const;
+  // Writes to `path` atomically: a temporary file renamed at the end.
+  void write_file(const std::string& path, TableFormat f) const;
 };
 
 // Cell formatting shared by the tables: numbers to `digits` significant

@@ -1,6 +1,4 @@
 // `chaosweep table NAME RESULTS.h5...`
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -60,14 +58,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
           t.write(std::cout, f);
           return exit_ok;
         }
-        const std::string tmp = o->out + ".tmp";
-        {
-          std::ofstream out(tmp);
-          t.write(out, f);
-          out.flush();
-          if (!out) throw AnalysisError("cannot write " + o->out);
-        }
-        std::filesystem::rename(tmp, o->out);
+        t.write_file(o->out, f);
         return exit_ok;
       });
     };
