@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <ctime>
 #include <sstream>
 
@@ -103,6 +104,15 @@ std::string utc_now() {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
+}
+
+void add_force_flag(CLI::App& cmd, bool& force) {
+  cmd.add_flag("--force", force, "replace output files that already exist");
+}
+
+void check_output_free(const std::string& path, bool force, const std::string& flag) {
+  if (force || path.empty() || !std::filesystem::exists(path)) return;
+  throw OutputExists(flag + ": " + path + " exists; pass --force to replace it");
 }
 
 }  // namespace chaosweep

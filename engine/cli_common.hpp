@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <map>
+#include <stdexcept>
 #include <string>
 
 #include "run_params.hpp"
@@ -22,12 +23,29 @@ void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw);
 // Applies raw flag values; throws SpecError naming the flag.
 void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& run);
 
-// Runs a subcommand's body: BadInput (the module's error for bad input)
-// becomes a message and exit 2, any other exception a message and exit 3.
+// An output file that exists and may not be replaced (bad input: exit 2).
+struct OutputExists : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Adds --force to a command that writes files: results can be hours of work,
+// so no command replaces an existing file unless asked to.
+void add_force_flag(CLI::App& cmd, bool& force);
+
+// Throws OutputExists naming `path` (and `flag`, the option that gave it)
+// when the file exists and `force` is not set.
+void check_output_free(const std::string& path, bool force, const std::string& flag = "-o");
+
+// Runs a subcommand's body: BadInput (the module's error for bad input) and
+// OutputExists become a message and exit 2, any other exception a message
+// and exit 3.
 template <class BadInput, class Body>
 int run_reporting(const char* command, Body&& body) {
   try {
     return body();
+  } catch (const OutputExists& e) {
+    std::cerr << "chaosweep " << command << ": " << e.what() << "\n";
+    return exit_bad_input;
   } catch (const BadInput& e) {
     std::cerr << "chaosweep " << command << ": " << e.what() << "\n";
     return exit_bad_input;

@@ -33,12 +33,14 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
     std::vector<std::string> where;
     std::vector<std::string> files;
     FigureOptions fig;
+    bool force = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("name", o->name, "fig6a, fig6b, heatmap, trajectory or coverage")->required();
   cmd->add_option("results", o->files, "result files (.h5); none for cheb_histogram, cheb_lyapunov")
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->out, "image file: .png, .svg, .pdf or .eps")->required();
+  add_force_flag(*cmd, o->force);
   cmd->add_option("--x", o->fig.x, "heatmap: column on the x axis");
   cmd->add_option("--y", o->fig.y, "heatmap: column on the y axis");
   auto* stat = cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic")->capture_default_str();
@@ -55,6 +57,8 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
     action = [o]() -> int {
       return run_reporting<AnalysisError>("figure", [&]() -> int {
         o->fig.size = parse_image_size(o->size);
+        check_output_free(o->out, o->force);
+        check_output_free(csv_beside(o->out), o->force, "-o (the CSV beside the image)");
         for (const std::string& v : split_list(o->mark)) {
           try {
             o->fig.mark.push_back(std::stod(v));

@@ -16,11 +16,14 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
       "2 bad input. Example: chaosweep merge -o out/fig6.h5 out/fig6.shard*.h5");
   auto out = std::make_shared<std::string>();
   auto inputs = std::make_shared<std::vector<std::string>>();
+  auto force = std::make_shared<bool>(false);
   cmd->add_option("-o,--output", *out, "merged result file")->required();
   cmd->add_option("shards", *inputs, "shard result files")->required()->check(CLI::ExistingFile);
-  cmd->callback([out, inputs, &action] {
-    action = [out, inputs]() -> int {
+  add_force_flag(*cmd, *force);
+  cmd->callback([out, inputs, force, &action] {
+    action = [out, inputs, force]() -> int {
       try {
+        check_output_free(*out, *force);
         const MergeReport r = merge_results(*inputs, *out);
         std::cout << r.text() << "\n";
         if (!r.ok()) {

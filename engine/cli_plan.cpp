@@ -25,11 +25,11 @@ std::string preview(const Axis& axis) {
       i = n - 3;
     }
     std::string v;
-    for (const auto& [key, value] : axis.values[i]) {
+    axis.visit(i, [&](const std::string& key, const SpecValue& value) {
       if (!v.empty()) v += ' ';
       if (axis.kind != "axis") v.append(key).append("=");
       v += to_text(value);
-    }
+    });
     if (!s.empty()) s += ", ";
     if (axis.kind == "axis") s += v;
     else s.append("{").append(v).append("}");

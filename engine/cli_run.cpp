@@ -48,18 +48,21 @@ void add_run_command(CLI::App& app, std::function<int()>& action) {
   auto raw = std::make_shared<std::map<std::string, std::string>>();
   auto json = std::make_shared<bool>(false);
   auto trace_path = std::make_shared<std::string>();
+  auto force = std::make_shared<bool>(false);
   add_param_flags(*cmd, *raw);
   cmd->add_flag("--json", *json, "print one JSON object with every input and output");
   cmd->add_option("--trace", *trace_path,
                   "write the trajectory as CSV (t, x, y, kind, ds_index; kind is start, arnold, "
                   "transit or logistic)")
       ->type_name("FILE");
-  cmd->callback([raw, json, trace_path, &action] {
-    action = [raw, json, trace_path]() -> int {
+  add_force_flag(*cmd, *force);
+  cmd->callback([raw, json, trace_path, force, &action] {
+    action = [raw, json, trace_path, force]() -> int {
       RunSpec spec;
       RunTuple tuple;
       try {
         apply_param_flags(*raw, spec);
+        check_output_free(*trace_path, *force, "--trace");
         EnvironmentCache cache;
         tuple = resolve_run(0, spec, cache);
       } catch (const std::exception& e) {

@@ -7,11 +7,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <thread>
 
 #include "cli_common.hpp"
+#include "disk_room.hpp"
 #include "cli_subcommands.hpp"
 #include "h5_store.hpp"
+#include "output_lock.hpp"
 #include "progress.hpp"
 #include "run_hash.hpp"
 #include "simd_choice.hpp"
@@ -24,7 +27,11 @@ namespace chaosweep {
 namespace {
 
 std::atomic<bool> stop_requested{false};
-extern "C" void on_stop_signal(int) { stop_requested.store(true); }
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  stop_signal = sig;
+  stop_requested.store(true);
+}
 
 struct Shard {
   int index = 0, count = 1;
@@ -69,14 +76,17 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       "one row of /runs in OUT, in run_id order. Rows go to OUT.partial, a batch at a time\n"
       "(the file is closed between batches, so a killed sweep leaves every finished batch);\n"
       "OUT appears only when the sweep completes. SIGINT/SIGTERM finish the runs in flight,\n"
-      "write them and exit 130: continue with --resume. A failing run is recorded with its\n"
-      "status, never aborts the sweep.\n"
+      "write them and exit 130/143: continue with --resume. A batch that might not fit on the\n"
+      "disk (or under ulimit -f) is not begun: exit 3, continue with --resume once there is\n"
+      "room. OUT.lock keeps a second sweep off the same OUT. An existing OUT is replaced only\n"
+      "with --force (and only when the new sweep completes). A failing run is recorded with\n"
+      "its status, never aborts the sweep.\n"
       "Example: chaosweep sweep experiments/demo.toml -o out/demo/results.h5");
   struct Opts {
     std::string spec, out, shard, progress = "auto";
     int threads = 0;
     std::int64_t batch = 4096;
-    bool quiet = false, resume = false;
+    bool quiet = false, resume = false, force = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("spec", o->spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
@@ -88,6 +98,8 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       ->type_name("K/N");
   cmd->add_flag("--resume", o->resume,
                 "continue OUT.partial of the same spec and shard (or do nothing if OUT is complete)");
+  cmd->add_flag("--force", o->force,
+                "run even though OUT (replaced when this sweep completes) or OUT.partial (started over) exists");
   cmd->add_option("--batch", o->batch, "runs per write to OUT.partial")->check(CLI::Range(1, 1 << 24));
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors (and progress only with --progress=always)");
   cmd->add_option("--progress", o->progress,
@@ -114,17 +126,23 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       const std::string spec_hash = hex64(fnv1a64(spec.text));
       const std::int64_t shard_runs = shard_size(spec.size(), shard.index, shard.count);
       std::int64_t skip = 0;
-      const bool resuming = o->resume && fs::exists(partial);
+      std::unique_ptr<OutputLock> lock;
+      bool resuming = false;
       try {
+        if (!o->resume && !o->force && fs::exists(o->out))
+          throw OutputExists(o->out + " exists; pass --force to replace it (kept until this sweep completes), "
+                             "or --resume to keep it");
+        lock = std::make_unique<OutputLock>(o->out);  // from here on, this process is OUT's only writer
+        resuming = o->resume && fs::exists(partial);
         if (o->resume && !fs::exists(partial) && fs::exists(o->out)) {
           if (read_attribute(o->out, "spec_hash") != spec_hash)
             throw std::runtime_error(o->out + " is complete but holds another spec's runs");
           if (!o->quiet) std::cout << o->out << " is complete: nothing to resume\n";
           return exit_ok;
         }
-        if (!o->resume && fs::exists(partial))
+        if (!o->resume && !o->force && fs::exists(partial))
           throw std::runtime_error(partial + " exists (an interrupted sweep): pass --resume to continue it, "
-                                   "or delete it to start over");
+                                   "or --force to start over");
         if (resuming) {
           if (read_attribute(partial, "spec_hash") != spec_hash)
             throw std::runtime_error(partial + " holds another spec's runs (spec_hash differs)");
@@ -153,9 +171,17 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       SweepSummary summary;
       std::signal(SIGINT, on_stop_signal);
       std::signal(SIGTERM, on_stop_signal);
+      std::signal(SIGXFSZ, SIG_IGN);  // past ulimit -f a write fails (reported) instead of killing us
       std::int64_t written = skip;
+      std::unique_ptr<H5RunWriter> created;
       try {
-        H5RunWriter writer(o->out, resuming ? H5RunWriter::Mode::resume : H5RunWriter::Mode::create);
+        created = std::make_unique<H5RunWriter>(o->out, resuming ? H5RunWriter::Mode::resume : H5RunWriter::Mode::create);
+      } catch (const std::exception& e) {
+        std::cerr << "chaosweep sweep: " << e.what() << "\n";
+        return exit_bad_input;  // nothing has run: the output path cannot be written
+      }
+      H5RunWriter& writer = *created;
+      try {
         if (!resuming) {
           writer.set_attribute("engine_version", engine_version());
           writer.set_attribute("git_commit", git_commit());
@@ -198,10 +224,15 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         if (written < shard_runs) {
           std::cerr << "chaosweep sweep: interrupted: " << written << " of " << shard_runs << " runs are in "
                     << partial << "; continue with --resume\n";
-          return 130;
+          return 128 + (stop_signal ? int(stop_signal) : SIGINT);
         }
         writer.set_attribute("end_time", utc_now());
         writer.finish();
+      } catch (const OutOfRoom& e) {
+        std::cerr << "chaosweep sweep: " << e.what() << "\nchaosweep sweep: stopped: " << writer.rows_written()
+                  << " of " << shard_runs << " runs are in " << partial
+                  << "; make room, then continue with --resume\n";
+        return exit_failure;
       } catch (const std::exception& e) {
         std::cerr << "chaosweep sweep: " << e.what() << "\n";
         return exit_failure;

@@ -31,12 +31,14 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
     std::vector<std::string> where;
     std::vector<std::string> files;
     TableOptions table;
+    bool force = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("name", o->name, "table1, best or summary")->required();
   cmd->add_option("results", o->files, "result files (.h5); none for seed001")->check(CLI::ExistingFile);
   cmd->add_option("--format", o->format, "md, csv or tex")->capture_default_str();
   cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
+  add_force_flag(*cmd, o->force);
   cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary)");
   cmd->add_option("--params", o->params, "parameter columns, comma-separated (best)");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
@@ -48,6 +50,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
     action = [o]() -> int {
       return run_reporting<AnalysisError>("table", [&]() -> int {
         const TableFormat f = parse_table_format(o->format);
+        check_output_free(o->out, o->force);
         o->table.by = split_list(o->by);
         o->table.params = split_list(o->params);
         const bool needs = table_needs_results(o->name);

@@ -1,12 +1,16 @@
 #include "h5_store.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <thread>
 #include <chrono>
 
+#include <unistd.h>
+
+#include "disk_room.hpp"
 #include "result_columns.hpp"
 
 namespace chaosweep {
@@ -115,8 +119,10 @@ H5RunWriter::H5RunWriter(std::string path, Mode mode) : path_(std::move(path)), 
   }
   const fs::path parent = fs::path(path_).parent_path();
   if (!parent.empty()) fs::create_directories(parent);
-  file_ = H5Fcreate(partial_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file_ < 0) h5_fail("cannot create " + partial_);
+  errno = 0;
+  H5E_BEGIN_TRY { file_ = H5Fcreate(partial_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); }
+  H5E_END_TRY;
+  if (file_ < 0) h5_fail("cannot create " + partial_ + (errno ? std::string(": ") + std::strerror(errno) : ""));
   hsize_t dims = 0, maxdims = H5S_UNLIMITED;
   hid_t space = H5Screate_simple(1, &dims, &maxdims);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
@@ -150,10 +156,15 @@ void H5RunWriter::open() {
   if (dset_ < 0) h5_fail(partial_ + " has no /runs dataset");
 }
 
-void H5RunWriter::close() {
-  if (dset_ >= 0) H5Dclose(dset_);
-  if (file_ >= 0) H5Fclose(file_);
+bool H5RunWriter::close() {
+  herr_t rc = 0;
+  H5E_BEGIN_TRY {
+    if (dset_ >= 0 && H5Dclose(dset_) < 0) rc = -1;
+    if (file_ >= 0 && H5Fclose(file_) < 0) rc = -1;  // flushes: fails when the disk is full
+  }
+  H5E_END_TRY;
   dset_ = file_ = -1;
+  return rc >= 0;
 }
 
 void write_text_attribute(hid_t loc, const std::string& name, const std::string& value) {
@@ -199,17 +210,25 @@ void H5RunWriter::append(const std::vector<RunRow>& rows) {
       }
     }
   }
+  // Bound on what the write adds: the rows uncompressed, the last chunk
+  // rewritten elsewhere (compressed chunks that grow move), and metadata.
+  check_room(partial_, (rows.size() + chunk_rows) * row_size_ + (256u << 10));
   open();
   const hsize_t start = rows_, count = rows.size(), total = rows_ + rows.size();
   if (H5Dset_extent(dset_, &total) < 0) h5_fail("cannot extend /runs");
   hid_t fspace = H5Dget_space(dset_);
   H5Sselect_hyperslab(fspace, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
   hid_t mspace = H5Screate_simple(1, &count, nullptr);
-  const herr_t rc = H5Dwrite(dset_, type_, mspace, fspace, H5P_DEFAULT, buf.data());
+  errno = 0;
+  herr_t rc;
+  H5E_BEGIN_TRY { rc = H5Dwrite(dset_, type_, mspace, fspace, H5P_DEFAULT, buf.data()); }
+  H5E_END_TRY;
   H5Sclose(mspace);
   H5Sclose(fspace);
-  if (rc < 0) h5_fail("cannot write rows to " + partial_);
-  close();  // everything on disk before the next batch starts
+  // close(): everything on disk before the next batch starts
+  if (!close() || rc < 0)
+    h5_fail("cannot write rows to " + partial_ + (errno ? std::string(": ") + std::strerror(errno) : "") +
+            " (the disk may be full)");
   rows_ = total;
 }
 

@@ -36,7 +36,7 @@ class H5RunWriter {
 
  private:
   void open();
-  void close();
+  bool close();  // false when flushing failed
   std::string path_, partial_;
   hid_t file_ = -1, dset_ = -1, type_ = -1;
   std::size_t row_size_ = 0, rows_ = 0;

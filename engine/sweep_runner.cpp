@@ -10,10 +10,7 @@
 namespace chaosweep {
 
 void preload_environments(const SweepSpec& spec, EnvironmentCache& cache) {
-  for (std::int64_t i = 0; i < spec.size(); ++i) {
-    const RunSpec r = spec.run(i);
-    cache.get(r.env, r.params.size_x, r.params.size_y);
-  }
+  for (const RunSpec& r : spec.environment_variants()) cache.get(r.env, r.params.size_x, r.params.size_y);
 }
 
 namespace {

@@ -159,6 +159,44 @@ std::string Axis::name() const {
   return s + ")";
 }
 
+std::uint64_t permute_index(std::uint64_t i, std::uint64_t n, std::uint64_t key) {
+  // A 4-round Feistel network is a bijection of [0, 4^h) for any round
+  // function; values that land at or past n walk on through the cycle until
+  // they fall inside, which restricts it to a bijection of [0, n). The
+  // domain is under 4n, so a walk is short.
+  int half = 1;
+  while ((std::uint64_t(1) << (2 * half)) < n) ++half;
+  const std::uint64_t mask = (std::uint64_t(1) << half) - 1;
+  do {
+    std::uint64_t l = i >> half, r = i & mask;
+    for (std::uint64_t round = 0; round < 4; ++round) {
+      std::uint64_t state = key ^ (round * 0xd1b54a32d192ed03ULL) ^ r;
+      const std::uint64_t f = splitmix64(state) & mask;
+      const std::uint64_t next = l ^ f;
+      l = r;
+      r = next;
+    }
+    i = (l << half) | r;
+  } while (i >= n);
+  return i;
+}
+
+Settings Sampler::at(std::int64_t i) const {
+  Settings out;
+  out.reserve(dims.size());
+  for (const Dim& d : dims) {
+    // Point i's stratum (Latin hypercube: a permutation per dimension) and
+    // its place inside it, both pure functions of (seed, dimension, i).
+    std::uint64_t state = d.jitter_key ^ (std::uint64_t(i) * 0xd6e8feb86659fd93ULL);
+    const double u = uniform01(state);
+    const double w =
+        lhs ? (double(permute_index(std::uint64_t(i), std::uint64_t(n), d.perm_key)) + u) / double(n) : u;
+    if (d.choices.empty()) out.emplace_back(d.key, std::min(d.hi, d.lo + (d.hi - d.lo) * w));
+    else out.emplace_back(d.key, d.choices[std::min(d.choices.size() - 1, std::size_t(w * double(d.choices.size())))]);
+  }
+  return out;
+}
+
 std::int64_t SpecPart::own_size() const {
   std::int64_t n = 1;
   for (const Axis& a : axes) n *= std::int64_t(a.size());
@@ -201,32 +239,77 @@ std::int64_t repeat_seed(std::uint64_t master, std::int64_t run_id) {
   return std::int64_t(splitmix64(state) >> 11);
 }
 
+namespace {
+
+// The axes of a run's product: its part's own (slowest), then the shared ones.
+std::vector<const Axis*> axes_of(const SweepSpec& spec, const SpecPart* part) {
+  std::vector<const Axis*> order;
+  if (part)
+    for (const Axis& a : part->axes) order.push_back(&a);
+  for (const Axis& a : spec.axes) order.push_back(&a);
+  return order;
+}
+
+// The run at position pos[k] of each axis order[k]: base, the part's fixed
+// settings, then each axis's settings in order.
+RunSpec compose(const SweepSpec& spec, const SpecPart* part, const std::vector<const Axis*>& order,
+                const std::vector<std::size_t>& pos) {
+  RunSpec r = spec.base;
+  if (part)
+    for (const auto& [key, value] : part->fixed) apply_setting(r, key, value);
+  for (std::size_t k = 0; k < order.size(); ++k)
+    order[k]->visit(pos[k], [&](const std::string& key, const SpecValue& value) { apply_setting(r, key, value); });
+  if (part && r.label.empty()) r.label = part->name;
+  return r;
+}
+
+}  // namespace
+
 RunSpec SweepSpec::run(std::int64_t i) const {
   const std::int64_t run_id = i;
-  RunSpec r = base;
-  // The axes of this run's product: its part's own (slowest), then the shared ones.
-  std::vector<const Axis*> order;
   const SpecPart* part = nullptr;
   if (!parts.empty()) {
     const std::size_t k = part_of(i);
     part = &parts[k];
     i -= part_offset(k);
-    for (const auto& [key, value] : part->fixed) apply_setting(r, key, value);
-    for (const Axis& a : part->axes) order.push_back(&a);
   }
-  for (const Axis& a : axes) order.push_back(&a);
-  // Mixed radix, last axis fastest; each axis sets its keys in order.
+  const std::vector<const Axis*> order = axes_of(*this, part);
+  // Mixed radix, last axis fastest.
   std::vector<std::size_t> pos(order.size());
   for (std::size_t k = order.size(); k-- > 0;) {
     const auto n = std::int64_t(order[k]->size());
     pos[k] = std::size_t(i % n);
     i /= n;
   }
-  for (std::size_t k = 0; k < order.size(); ++k)
-    for (const auto& [key, value] : order[k]->values[pos[k]]) apply_setting(r, key, value);
-  if (part && r.label.empty()) r.label = part->name;
+  RunSpec r = compose(*this, part, order, pos);
   if (repeat) r.params.seed = repeat_seed(master_seed, run_id);
   return r;
+}
+
+std::vector<RunSpec> SweepSpec::environment_variants() const {
+  std::vector<RunSpec> out;
+  const auto sets_map = [](const Axis* a) {
+    for (const std::string& k : a->keys)
+      if (k == "env" || k == "size" || k == "size_x" || k == "size_y") return true;
+    return false;
+  };
+  const std::size_t nparts = parts.empty() ? 1 : parts.size();
+  for (std::size_t p = 0; p < nparts; ++p) {
+    const SpecPart* part = parts.empty() ? nullptr : &parts[p];
+    const std::vector<const Axis*> order = axes_of(*this, part);
+    std::vector<std::size_t> map_axes;
+    for (std::size_t k = 0; k < order.size(); ++k)
+      if (sets_map(order[k])) map_axes.push_back(k);
+    // Every combination of the map axes' positions, the other axes at 0.
+    std::vector<std::size_t> pos(order.size(), 0);
+    for (;;) {
+      out.push_back(compose(*this, part, order, pos));
+      std::size_t m = map_axes.size();
+      while (m > 0 && ++pos[map_axes[m - 1]] == order[map_axes[m - 1]]->size()) pos[map_axes[--m]] = 0;
+      if (m == 0) break;
+    }
+  }
+  return out;
 }
 
 namespace {
@@ -268,8 +351,9 @@ void claim(UsedKeys& used, const std::string& key, const KeyUse& use, const std:
 }
 
 // Checks every value of an axis now, so a bad value fails before any run.
+// (Samples are checked at their bounds and choices by parse_sample.)
 void check_axis(const Axis& axis, const RunSpec& base, const std::string& where) {
-  for (std::size_t i = 0; i < axis.size(); ++i) {
+  for (std::size_t i = 0; i < axis.values.size(); ++i) {
     RunSpec scratch = base;
     for (const auto& [key, value] : axis.values[i]) {
       try {
@@ -287,32 +371,37 @@ void check_axis(const Axis& axis, const RunSpec& base, const std::string& where)
 // [sample]: n points, Latin-hypercube ("lhs": each range cut into n equal
 // strata, one point per stratum, strata paired by seeded permutations) or
 // independent uniform ("random"); a list draws one of its values. One axis.
-Axis parse_sample(const toml::table& t, const std::string& where, const KeyUse& use, UsedKeys& used) {
-  std::string method = "lhs";
-  std::int64_t n = 0;
+Axis parse_sample(const toml::table& t, const std::string& where, const KeyUse& use, UsedKeys& used,
+                  const RunSpec& base) {
+  auto sampler = std::make_shared<Sampler>();
   std::uint64_t seed = 0;
-  struct Dim {
-    std::string key;
-    double lo = 0, hi = 0;
-    std::vector<SpecValue> choices;
-  };
-  std::vector<std::pair<std::uint32_t, Dim>> dims;
+  std::vector<std::pair<std::uint32_t, Sampler::Dim>> dims;
   for (auto&& [k, node] : t) {
     const std::string key(k.str());
     if (key == "method") {
       const auto m = node.value<std::string>();
       if (!m || (*m != "lhs" && *m != "random")) fail(where + ".method", "must be \"lhs\" or \"random\"");
-      method = *m;
+      sampler->lhs = *m == "lhs";
     } else if (key == "n" || key == "seed") {
       const auto v = node.value<double>();
       if (!v || !(*v >= 0 && *v == std::floor(*v) && *v < 9.007199254740992e15))
         fail(where + "." + key, "must be a whole number >= 0");
-      if (key == "n") n = std::int64_t(*v);
+      if (key == "n") sampler->n = std::int64_t(*v);
       else seed = std::uint64_t(*v);
     } else {
       claim(used, key, use, where + "." + key);
-      Dim d;
+      Sampler::Dim d;
       d.key = key;
+      // Every value a point can take lies in [min, max] or in the list:
+      // checking those here checks every point.
+      RunSpec scratch = base;
+      const auto check = [&](const SpecValue& v, const std::string& at) {
+        try {
+          apply_setting(scratch, key, v);
+        } catch (const SpecError& e) {
+          fail(at, e.what());
+        }
+      };
       if (const toml::table* r = node.as_table()) {
         const auto lo = (*r)["min"].value<double>(), hi = (*r)["max"].value<double>();
         if (!lo || !hi || r->size() != 2) fail(where + "." + key, "a range is {min = a, max = b}");
@@ -322,34 +411,30 @@ Axis parse_sample(const toml::table& t, const std::string& where, const KeyUse& 
           fail(where + "." + key, "a {min, max} range needs a real-valued parameter; give a list of values");
         d.lo = *lo;
         d.hi = *hi;
+        check(d.lo, where + "." + key + ".min");
+        check(d.hi, where + "." + key + ".max");
       } else if (node.is_array()) {
         d.choices = axis_values(node, where + "." + key);
+        for (std::size_t c = 0; c < d.choices.size(); ++c)
+          check(d.choices[c], where + "." + key + "[" + std::to_string(c) + "]");
       } else {
         fail(where + "." + key, "must be a range {min, max} or a list of values");
       }
       dims.emplace_back(node.source().begin.line, std::move(d));
     }
   }
-  if (n < 1 || n > 100000000) fail(where + ".n", "must be in [1, 1e8]");
+  if (sampler->n < 1 || sampler->n > 100000000) fail(where + ".n", "must be in [1, 1e8]");
   if (dims.empty()) fail(where, "samples nothing: add parameters as {min, max} or lists");
   std::stable_sort(dims.begin(), dims.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  Axis axis{"sample", {}, std::vector<Settings>(std::size_t(n))};
+  Axis axis{"sample", {}, {}, {}};
   std::uint64_t state = seed;
   for (auto& [line, d] : dims) {
     axis.keys.push_back(d.key);
-    std::vector<std::int64_t> stratum(static_cast<std::size_t>(n));
-    for (std::int64_t i = 0; i < n; ++i) stratum[std::size_t(i)] = i;
-    for (std::int64_t i = n - 1; i > 0; --i)  // Fisher-Yates with splitmix64
-      std::swap(stratum[std::size_t(i)], stratum[std::size_t(splitmix64(state) % std::uint64_t(i + 1))]);
-    for (std::int64_t i = 0; i < n; ++i) {
-      const double u = uniform01(state);
-      const double w = method == "lhs" ? (double(stratum[std::size_t(i)]) + u) / double(n) : u;
-      SpecValue v;
-      if (d.choices.empty()) v = d.lo + (d.hi - d.lo) * w;
-      else v = d.choices[std::min(d.choices.size() - 1, std::size_t(w * double(d.choices.size())))];
-      axis.values[std::size_t(i)].emplace_back(d.key, v);
-    }
+    d.perm_key = splitmix64(state);
+    d.jitter_key = splitmix64(state);
+    sampler->dims.push_back(std::move(d));
   }
+  axis.sampler = std::move(sampler);
   return axis;
 }
 
@@ -451,8 +536,7 @@ void parse_axis_sections(const toml::table& t, const std::string& at, const std:
     if (!axis.values.empty()) ordered.emplace_back(cases->source().begin.line, std::move(axis));
   }
   if (const toml::table* st = t["sample"].as_table()) {
-    Axis axis = parse_sample(*st, at + "sample", {origin + "sample", true, in_part}, used);
-    check_axis(axis, base, at + "sample");
+    Axis axis = parse_sample(*st, at + "sample", {origin + "sample", true, in_part}, used, base);
     ordered.emplace_back(st->source().begin.line, std::move(axis));
   }
 }

@@ -7,6 +7,7 @@
 // spec's top-level axes), and the runs are the parts' runs one after the
 // other in file order. See README.md, "Sweep specs".
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -34,15 +35,44 @@ struct RunSpec {
 // The settings an axis applies at one of its positions.
 using Settings = std::vector<std::pair<std::string, SpecValue>>;
 
+// A [sample] axis: n points computed on demand from the seed, never stored,
+// so a sample of millions of points costs no memory until its runs run.
+struct Sampler {
+  struct Dim {
+    std::string key;
+    double lo = 0, hi = 0;            // a {min, max} range ...
+    std::vector<SpecValue> choices;   // ... or a list to pick from
+    std::uint64_t perm_key = 0, jitter_key = 0;
+  };
+  bool lhs = true;  // Latin hypercube; false: independent uniform draws
+  std::int64_t n = 0;
+  std::vector<Dim> dims;
+  Settings at(std::int64_t i) const;  // point i, 0 <= i < n
+};
+
 // An axis: one key (a plain axis), several advancing together (a [[zip]]
-// group), or a list of cases ([[case]] tables, one position each).
+// group), a list of cases ([[case]] tables, one position each), or a sample.
 struct Axis {
-  std::string kind = "axis";      // "axis", "zip" or "case"
+  std::string kind = "axis";      // "axis", "zip", "case" or "sample"
   std::vector<std::string> keys;  // every key the axis sets
-  std::vector<Settings> values;   // values[i]: the settings of position i
-  std::size_t size() const { return values.size(); }
+  std::vector<Settings> values;   // values[i]: the settings of position i (not for samples)
+  std::shared_ptr<const Sampler> sampler;  // samples: positions computed, not stored
+  std::size_t size() const { return sampler ? std::size_t(sampler->n) : values.size(); }
+  // Calls f(key, value) for each setting of position i.
+  template <class F>
+  void visit(std::size_t i, F&& f) const {
+    if (sampler) {
+      for (const auto& kv : sampler->at(std::int64_t(i))) f(kv.first, kv.second);
+    } else {
+      for (const auto& kv : values[i]) f(kv.first, kv.second);
+    }
+  }
   std::string name() const;  // "A", "zip(size, sr)" or "case(label, size, ...)"
 };
+
+// A bijection of [0, n) keyed by `key` (Latin-hypercube strata without a
+// stored permutation).
+std::uint64_t permute_index(std::uint64_t i, std::uint64_t n, std::uint64_t key);
 
 // A [[part]]: a product of its own over the spec's base. Its runs start from
 // the base, apply `fixed`, then its axes (slowest), then the spec's top-level
@@ -69,6 +99,10 @@ struct SweepSpec {
 
   std::int64_t size() const;
   RunSpec run(std::int64_t i) const;  // 0 <= i < size()
+  // A run for every combination of the axes that set env or the map size
+  // (other axes at their first value), per part: each environment the runs
+  // load, without visiting every run.
+  std::vector<RunSpec> environment_variants() const;
 
   std::int64_t shared_size() const;                 // product of `axes` (1 if none)
   std::int64_t part_size(std::size_t k) const;      // runs of parts[k]

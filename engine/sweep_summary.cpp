@@ -1,34 +1,69 @@
 #include "sweep_summary.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 
 namespace chaosweep {
 
+namespace {
+// Positive doubles order like their bit patterns: dropping all but 10
+// mantissa bits gives bins of relative width 2^-10.
+constexpr int drop_bits = 42;
+std::uint64_t bin_of(double t) { return std::bit_cast<std::uint64_t>(t) >> drop_bits; }
+double bin_middle(std::uint64_t b) {
+  return 0.5 * (std::bit_cast<double>(b << drop_bits) + std::bit_cast<double>((b + 1) << drop_bits));
+}
+}  // namespace
+
+void SweepSummary::bin(double t) { ++bins_[bin_of(std::max(t, 0.0))]; }
+
 void SweepSummary::add(const RunRow& row) {
   ++runs_;
   ++by_status_[std::size_t(row.result.status)];
-  if (row.result.status == Status::ok) {
-    if (ok_times_.empty() || row.result.coverage_time < best_time()) best_id_ = row.tuple.run_id;
-    ok_times_.push_back(row.result.coverage_time);
+  if (row.result.status != Status::ok) return;
+  const double t = row.result.coverage_time;
+  if (ok_ == 0 || t < best_time_) {
+    best_time_ = t;
+    best_id_ = row.tuple.run_id;
   }
-}
-
-double SweepSummary::best_time() const {
-  if (ok_times_.empty()) return NAN;
-  return *std::min_element(ok_times_.begin(), ok_times_.end());
+  ++ok_;
+  if (bins_.empty() && ok_times_.size() < exact_limit) {
+    ok_times_.push_back(t);
+    return;
+  }
+  if (bins_.empty()) {  // past the limit: from now on, bins only
+    for (double v : ok_times_) bin(v);
+    std::vector<double>().swap(ok_times_);
+  }
+  bin(t);
 }
 
 double SweepSummary::median_time() const {
-  if (ok_times_.empty()) return NAN;
-  std::vector<double> v = ok_times_;
-  const std::size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + m, v.end());
-  if (v.size() % 2) return v[m];
-  const double upper = v[m];
-  std::nth_element(v.begin(), v.begin() + m - 1, v.end());
-  return 0.5 * (v[m - 1] + upper);
+  if (ok_ == 0) return NAN;
+  if (bins_.empty()) {
+    std::vector<double> v = ok_times_;
+    const std::size_t m = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + m, v.end());
+    if (v.size() % 2) return v[m];
+    const double upper = v[m];
+    std::nth_element(v.begin(), v.begin() + m - 1, v.end());
+    return 0.5 * (v[m - 1] + upper);
+  }
+  // The middle of the bins holding ranks (ok-1)/2 and ok/2.
+  const std::int64_t lo_rank = (ok_ - 1) / 2, hi_rank = ok_ / 2;
+  double lo = NAN, hi = NAN;
+  std::int64_t seen = 0;
+  for (const auto& [b, n] : bins_) {
+    if (std::isnan(lo) && lo_rank < seen + n) lo = bin_middle(b);
+    if (hi_rank < seen + n) {
+      hi = bin_middle(b);
+      break;
+    }
+    seen += n;
+  }
+  return 0.5 * (lo + hi);
 }
 
 std::string SweepSummary::text() const {
@@ -44,11 +79,11 @@ std::string SweepSummary::text() const {
   s += buf;
   if (count(Status::timeout) + count(Status::stuck) > 0)
     s += "            (timeout/stuck: coverage stalled below dc within the budget, e.g. a regular orbit)\n";
-  if (ok_times_.empty()) {
+  if (ok_ == 0) {
     s += "coverage time: no run reached the desired coverage\n";
   } else {
-    std::snprintf(buf, sizeof buf, "best CT     %.1f s  (run_id %lld)\nmedian CT   %.1f s  (over ok runs)\n",
-                  best_time(), (long long)best_id_, median_time());
+    std::snprintf(buf, sizeof buf, "best CT     %.1f s  (run_id %lld)\nmedian CT   %.1f s  (over ok runs%s)\n",
+                  best_time(), (long long)best_id_, median_time(), median_is_exact() ? "" : "; within 0.05%");
     s += buf;
   }
   return s;

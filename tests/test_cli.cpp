@@ -216,22 +216,192 @@ TEST(CliSweep, KillNineThenResumeGivesTheUninterruptedFile) {
   EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
 }
 
-TEST(CliSweep, SigintStopsCleanlyAndResumeCompletes) {
+namespace {
+// `sig` mid-sweep: the runs in flight finish and are written, the exit code is
+// 128 + sig, and --resume completes the file (and then has nothing to do).
+void expect_signal_stops_cleanly_and_resume_completes(int sig) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), long_sweep);
   const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o " + tmp.file("r.h5");
   const int pid = chaosweep::test::start_chaosweep("sweep " + args);
   ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 100, pid));
-  kill(pid, SIGINT);
-  EXPECT_EQ(chaosweep::test::wait_exit(pid), 130);
+  kill(pid, sig);
+  EXPECT_EQ(chaosweep::test::wait_exit(pid), 128 + sig);
   const std::int64_t kept = chaosweep::count_rows(tmp.file("r.h5.partial"));
   EXPECT_GE(kept, 100);
   EXPECT_LT(kept, 1200);
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5.lock")));
   const auto resumed = run_chaosweep("sweep " + args + " --resume");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
   const auto done = run_chaosweep("sweep " + args + " --resume");  // idempotent: nothing left to do
   EXPECT_EQ(done.exit_code, 0);
+}
+}  // namespace
+
+TEST(CliSweep, SigintStopsCleanlyAndResumeCompletes) { expect_signal_stops_cleanly_and_resume_completes(SIGINT); }
+
+TEST(CliSweep, SigtermStopsCleanlyAndResumeCompletes) { expect_signal_stops_cleanly_and_resume_completes(SIGTERM); }
+
+TEST(CliSweep, SecondSweepOnTheSameOutputIsRefused) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), long_sweep);
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o " + tmp.file("r.h5");
+  const int pid = chaosweep::test::start_chaosweep("sweep " + args);
+  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 100, pid));
+  for (const char* extra : {" --resume", " --force"}) {
+    const auto second = run_chaosweep("sweep " + args + extra);
+    EXPECT_EQ(second.exit_code, 2) << extra;
+    EXPECT_NE(second.err.find("is being written by process " + std::to_string(pid)), std::string::npos) << second.err;
+  }
+  EXPECT_EQ(chaosweep::test::wait_exit(pid), 0);  // the first sweep never noticed
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5.lock")));  // removed by its holder
+  const auto whole = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("whole.h5"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  expect_same_results(tmp.file("r.h5"), tmp.file("whole.h5"));
+}
+
+TEST(CliSweep, FileSizeLimitStopsWithAResumableFile) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), long_sweep);
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o " + tmp.file("r.h5");
+  // First learn what the empty file and one batch take: a 200 kB limit stops
+  // before the first batch and says both.
+  const auto probe = run_chaosweep("sweep " + args, "prlimit --fsize=200000");
+  ASSERT_EQ(probe.exit_code, 3) << probe.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(probe.err, m, std::regex(R"(the file has (\d+), the next batch needs up to (\d+))")))
+      << probe.err;
+  EXPECT_NE(probe.err.find("ulimit -f"), std::string::npos) << probe.err;
+  EXPECT_NE(probe.err.find("--resume"), std::string::npos) << probe.err;
+  // Room for the first batch and a few more: the sweep stops between batches.
+  const long limit = std::stol(m[1]) + std::stol(m[2]) + 40000;
+  const auto r = run_chaosweep("sweep " + args + " --force", "prlimit --fsize=" + std::to_string(limit));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("make room, then continue with --resume"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5")));
+  const std::int64_t kept = chaosweep::count_rows(tmp.file("r.h5.partial"));
+  EXPECT_GE(kept, 100);
+  EXPECT_LT(kept, 1200);
+  EXPECT_EQ(kept % 100, 0);
+  const auto resumed = run_chaosweep("sweep " + args + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const auto whole = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("whole.h5"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  expect_same_results(tmp.file("r.h5"), tmp.file("whole.h5"));
+}
+
+namespace {
+// A tmpfs of `size` bytes at `dir` (mounted, or remounted at the new size).
+bool mount_tmpfs(const std::string& dir, long size, bool remount) {
+  const std::string cmd = "mount -t tmpfs -o " + std::string(remount ? "remount," : "") +
+                          "size=" + std::to_string(size) + " tmpfs " + dir + " 2>/dev/null";
+  return std::system(cmd.c_str()) == 0;
+}
+}  // namespace
+
+TEST(CliSweep, FullFilesystemStopsWithAResumableFile) {
+  TempDir tmp;
+  const std::string disk = tmp.file("disk");
+  std::filesystem::create_directory(disk);
+  if (!mount_tmpfs(disk, 200000, false)) GTEST_SKIP() << "cannot mount a tmpfs here (not root?)";
+  struct Unmount {
+    std::string dir;
+    ~Unmount() { std::system(("umount " + dir).c_str()); }
+  } unmount{disk};
+  write_file(tmp.file("s.toml"), long_sweep);
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o " + disk + "/r.h5";
+  const auto probe = run_chaosweep("sweep " + args);  // 200 kB: not even room for one batch
+  ASSERT_EQ(probe.exit_code, 3) << probe.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(probe.err, m, std::regex(R"(no room in \S+ for the next batch of \S+ \(needs up to (\d+) KiB)")))
+      << probe.err;
+  // Room for the first batch and a few more (tmpfs counts whole pages).
+  const long size = long(std::filesystem::file_size(disk + "/r.h5.partial")) + std::stol(m[1]) * 1024 + 64 * 1024;
+  ASSERT_TRUE(mount_tmpfs(disk, size, true));
+  const auto r = run_chaosweep("sweep " + args + " --force");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("make room, then continue with --resume"), std::string::npos) << r.err;
+  const std::int64_t kept = chaosweep::count_rows(disk + "/r.h5.partial");
+  EXPECT_GE(kept, 100);
+  EXPECT_LT(kept, 1200);
+  ASSERT_TRUE(mount_tmpfs(disk, 16 << 20, true));  // room again
+  const auto resumed = run_chaosweep("sweep " + args + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const auto whole = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("whole.h5"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  expect_same_results(disk + "/r.h5", tmp.file("whole.h5"));
+}
+
+TEST(CliSweep, ExistingOutputIsRefusedWithoutForce) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  const std::string args = "sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("r.h5");
+  write_file(tmp.file("r.h5"), "hours of someone's work");
+  const auto refused = run_chaosweep(args);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find(tmp.file("r.h5") + " exists; pass --force"), std::string::npos) << refused.err;
+  EXPECT_EQ(chaosweep::test::read_file(tmp.file("r.h5")), "hours of someone's work");
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5.partial")));
+  const auto forced = run_chaosweep(args + " --force");
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 18);
+}
+
+TEST(CliSweep, UnwritableOutputIsNamedAndNothingIsRun) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  write_file(tmp.file("file"), "");
+  // Root may write anywhere, so use a path no one can create: under a file.
+  const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -o " + tmp.file("file") + "/r.h5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(tmp.file("file")), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Not a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("runs on"), std::string::npos) << r.out;  // stopped before the sweep began
+}
+
+TEST(CliMerge, ExistingOutputIsRefusedWithoutForce) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  const auto shard = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("all.h5"));
+  ASSERT_EQ(shard.exit_code, 0) << shard.err;
+  write_file(tmp.file("m.h5"), "keep me");
+  const std::string args = "merge -o " + tmp.file("m.h5") + " " + tmp.file("all.h5");
+  const auto refused = run_chaosweep(args);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("exists; pass --force"), std::string::npos) << refused.err;
+  EXPECT_EQ(chaosweep::test::read_file(tmp.file("m.h5")), "keep me");
+  const auto forced = run_chaosweep(args + " --force");
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("m.h5")), 18);
+}
+
+TEST(CliOutputs, TableFigureAndTraceRefuseAnExistingFileWithoutForce) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  const auto sweep = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("r.h5"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  const std::string h5 = tmp.file("r.h5");
+  struct Case {
+    std::string command, kept;  // kept: the existing file the command would replace
+  };
+  const std::vector<Case> cases{
+      {"table best " + h5 + " -o " + tmp.file("t.md"), "t.md"},
+      {"figure heatmap " + h5 + " --x A --y B -o " + tmp.file("f.png"), "f.png"},
+      {"figure heatmap " + h5 + " --x A --y B -o " + tmp.file("g.png"), "g.csv"},  // the CSV beside
+      {"run --size 12 --max-time 100 --trace " + tmp.file("trace.csv"), "trace.csv"}};
+  for (const Case& c : cases) {
+    write_file(tmp.file(c.kept), "keep me");
+    const auto refused = run_chaosweep(c.command);
+    EXPECT_EQ(refused.exit_code, 2) << c.command;
+    EXPECT_NE(refused.err.find(tmp.file(c.kept) + " exists; pass --force"), std::string::npos) << refused.err;
+    EXPECT_EQ(chaosweep::test::read_file(tmp.file(c.kept)), "keep me") << c.command;
+    const auto forced = run_chaosweep(c.command + " --force");
+    EXPECT_EQ(forced.exit_code, 0) << c.command << forced.err;
+    EXPECT_NE(chaosweep::test::read_file(tmp.file(c.kept)), "keep me") << c.command;
+    std::filesystem::remove(tmp.file(c.kept));
+  }
 }
 
 TEST(CliMerge, ShardsMergedEqualTheSingleMachineFile) {
@@ -326,4 +496,60 @@ TEST(CliPlan, ShowsRunsAxesAndAWorkBound) {
   EXPECT_NE(r.out.find("at most 3.6e+05 integration steps"), std::string::npos) << r.out;
   const auto bad = run_chaosweep("plan " + std::string(CHAOSWEEP_SOURCE_DIR) + "/README.md");
   EXPECT_EQ(bad.exit_code, 2);
+}
+
+// ------------------------------------------------------------ bounded memory
+
+namespace {
+// Cheap runs (a 6 m map, SR 2 m): about two thirds reach 90% in well under
+// a minute of robot time, the rest time out; `num` B values per A.
+std::string cheap_sweep(int a_values, int b_values) {
+  return "[fixed]\nsize = 6\nsr = 2\n[axes]\nA = { start = 0.3, stop = 0.7, num = " + std::to_string(a_values) +
+         " }\nB = { start = 0.1, stop = 0.8, num = " + std::to_string(b_values) + " }\n";
+}
+
+// Peak RSS (KiB) of a whole sweep of `spec`.
+long sweep_peak_rss(const TempDir& tmp, const std::string& name, const std::string& spec) {
+  write_file(tmp.file(name + ".toml"), spec);
+  const int pid = chaosweep::test::start_chaosweep("sweep " + tmp.file(name + ".toml") + " -q --batch 1000 -o " +
+                                                   tmp.file(name + ".h5"));
+  long rss = 0;
+  EXPECT_EQ(chaosweep::test::wait_exit(pid, &rss), 0);
+  return rss;
+}
+}  // namespace
+
+// AddressSanitizer's quarantine holds freed memory (up to 256 MiB), so a
+// peak RSS means nothing under it; the Release suite measures.
+#if defined(__SANITIZE_ADDRESS__)
+#define SKIP_UNDER_ASAN() GTEST_SKIP() << "peak RSS is not meaningful under AddressSanitizer"
+#else
+#define SKIP_UNDER_ASAN() (void)0
+#endif
+
+TEST(CliSweep, PeakMemoryDoesNotGrowWithTheNumberOfRuns) {
+  SKIP_UNDER_ASAN();
+  TempDir tmp;
+  const long small = sweep_peak_rss(tmp, "small", cheap_sweep(10, 500));   // 5,000 runs
+  const long large = sweep_peak_rss(tmp, "large", cheap_sweep(100, 500));  // 50,000 runs
+  ASSERT_EQ(chaosweep::count_rows(tmp.file("large.h5")), 50000);
+  // Ten times the runs, the same memory (rows go to disk a batch at a time).
+  EXPECT_LT(large, small + 4096) << "peak RSS " << small << " KiB for 5,000 runs, " << large << " KiB for 50,000";
+}
+
+TEST(CliSweep, TenMillionRunSweepStartsAtOnceInBoundedMemory) {
+  SKIP_UNDER_ASAN();
+  TempDir tmp;
+  write_file(tmp.file("big.toml"), cheap_sweep(100, 100000));  // 10^7 runs
+  const std::string partial = tmp.file("big.h5.partial");
+  const int pid = chaosweep::test::start_chaosweep("sweep " + tmp.file("big.toml") + " -q --batch 1000 -o " +
+                                                   tmp.file("big.h5"));
+  ASSERT_TRUE(wait_for_rows(partial, 3000, pid));
+  kill(pid, SIGINT);
+  long rss = 0;
+  EXPECT_EQ(chaosweep::test::wait_exit(pid, &rss), 130);
+  EXPECT_LT(rss, 100 * 1024) << "peak RSS " << rss << " KiB";
+  const auto plan = chaosweep::test::run_chaosweep("plan " + tmp.file("big.toml"));
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  EXPECT_NE(plan.out.find("runs        10000000"), std::string::npos) << plan.out;
 }

@@ -17,6 +17,7 @@
 #include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 #include "sweep_spec.hpp"
+#include "sweep_summary.hpp"
 #include "test_util.hpp"
 
 using namespace chaosweep;
@@ -155,6 +156,77 @@ TEST(SweepSpec, LatinHypercubePutsOnePointInEveryStratum) {
   EXPECT_NE(parse_sweep_spec(other, "x").run(17).params.A, s.run(17).params.A);
   const SweepSpec r = parse_sweep_spec("[sample]\nmethod = \"random\"\nn = 20\nA = { min = 1, max = 2 }\n", "x");
   for (std::int64_t i = 0; i < 20; ++i) EXPECT_TRUE(r.run(i).params.A >= 1 && r.run(i).params.A < 2);
+}
+
+TEST(SweepSpec, PermuteIndexIsABijectionOfZeroToNForAnyN) {
+  for (std::uint64_t n : {1, 2, 3, 5, 64, 65, 1000, 4097}) {
+    std::set<std::uint64_t> seen;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const std::uint64_t j = permute_index(i, n, 0x1234 + n);
+      ASSERT_LT(j, n);
+      seen.insert(j);
+    }
+    EXPECT_EQ(seen.size(), n);
+  }
+  // Keyed: another key, another order.
+  int moved = 0;
+  for (std::uint64_t i = 0; i < 1000; ++i) moved += permute_index(i, 1000, 1) != permute_index(i, 1000, 2);
+  EXPECT_GT(moved, 900);
+}
+
+TEST(SweepSpec, TenMillionRunSpecIsExpandedLazily) {
+  // 10^7 runs of a product and 10^7 points of a Latin hypercube: neither is
+  // stored, so any run is at hand at once (memory is pinned by
+  // CliPlan.TenMillionRunSpecStaysSmallInMemory).
+  const SweepSpec s = parse_sweep_spec(
+      "[[part]]\nname = \"grid\"\n[part.axes]\nA = { start = 0.3, stop = 0.7, num = 100 }\n"
+      "B = { start = 0.1, stop = 0.8, num = 100 }\nC = { start = 0.1, stop = 0.8, num = 1000 }\n"
+      "[[part]]\nname = \"lhs\"\n[part.sample]\nn = 10000000\nseed = 5\nA = { min = 0.3, max = 0.7 }\n",
+      "x");
+  ASSERT_EQ(s.size(), 20000000);
+  EXPECT_EQ(s.run(9999999).params.C, 0.8);
+  EXPECT_EQ(s.run(9999999).label, "grid");
+  const RunParams last = s.run(19999999).params;
+  EXPECT_TRUE(last.A >= 0.3 && last.A < 0.7) << last.A;
+  EXPECT_EQ(s.run(19999999).label, "lhs");
+  // The sample's first 1000 strata hold about 1000 of its points: spot-check
+  // the stratification on a slice without visiting all 10^7.
+  int low = 0;
+  for (std::int64_t i = 0; i < 100000; ++i) low += s.run(10000000 + i).params.A < 0.3 + 0.4 * 0.01;
+  EXPECT_NEAR(low, 1000, 150);
+  EXPECT_EQ(s.environment_variants().size(), 2u);  // one map per part: preloading visits 2 runs, not 2e7
+}
+
+TEST(SweepSummary, MedianIsExactThenWithinItsStatedPrecisionAndMemoryIsBounded) {
+  SweepSummary exact;
+  for (int t : {5, 1, 4, 2}) {
+    RunRow r;
+    r.result.status = Status::ok;
+    r.result.coverage_time = t;
+    exact.add(r);
+  }
+  EXPECT_EQ(exact.median_time(), 3.0);
+  EXPECT_TRUE(exact.median_is_exact());
+  // Past the exact limit the times are binned: median within 0.05%.
+  SweepSummary many;
+  const std::int64_t n = std::int64_t(SweepSummary::exact_limit) * 7 / 6 + 2000;  // ok: 6 in 7
+  for (std::int64_t i = 1; i <= n; ++i) {
+    RunRow r;
+    r.tuple.run_id = i;
+    r.result.status = i % 7 ? Status::ok : Status::timeout;
+    r.result.coverage_time = 1000.0 + double(i) * 1e-3;
+    many.add(r);
+  }
+  EXPECT_FALSE(many.median_is_exact());
+  std::vector<double> ok;
+  for (std::int64_t i = 1; i <= n; ++i)
+    if (i % 7) ok.push_back(1000.0 + double(i) * 1e-3);
+  const double truth = ok.size() % 2 ? ok[ok.size() / 2] : 0.5 * (ok[ok.size() / 2 - 1] + ok[ok.size() / 2]);
+  EXPECT_NEAR(many.median_time(), truth, truth * 5e-4);
+  EXPECT_EQ(many.best_time(), 1000.001);
+  EXPECT_EQ(many.best_run_id(), 1);
+  EXPECT_EQ(many.count(Status::timeout), n / 7);
+  EXPECT_NE(many.text().find("within 0.05%"), std::string::npos);
 }
 
 TEST(SweepSpec, RepeatsDeriveEachRunsSeedFromMasterSeedAndRunId) {

@@ -1,5 +1,6 @@
 #include "test_util.hpp"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <csignal>
 
@@ -38,10 +39,10 @@ std::string read_file(const std::string& path) {
   return ss.str();
 }
 
-CommandResult run_chaosweep(const std::string& args) {
+CommandResult run_chaosweep(const std::string& args, const std::string& prefix) {
   TempDir tmp;
   const std::string out = tmp.file("out"), err = tmp.file("err");
-  const std::string cmd = std::string(CHAOSWEEP_BIN) + " " + args + " >" + out + " 2>" + err;
+  const std::string cmd = prefix + " " + std::string(CHAOSWEEP_BIN) + " " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(out), read_file(err)};
 }
@@ -56,9 +57,11 @@ int start_chaosweep(const std::string& args) {
   return int(pid);
 }
 
-int wait_exit(int pid) {
+int wait_exit(int pid, long* max_rss_kib) {
   int status = 0;
-  waitpid(pid_t(pid), &status, 0);
+  rusage usage{};
+  wait4(pid_t(pid), &status, 0, &usage);
+  if (max_rss_kib) *max_rss_kib = usage.ru_maxrss;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 

@@ -35,13 +35,15 @@ struct CommandResult {
   std::string out;  // stdout
   std::string err;  // stderr
 };
-// Runs the built chaosweep binary with `args` (a shell-quoted string).
-CommandResult run_chaosweep(const std::string& args);
+// Runs the built chaosweep binary with `args` (a shell-quoted string), after
+// `prefix` (a wrapper command such as "prlimit --fsize=N", or nothing).
+CommandResult run_chaosweep(const std::string& args, const std::string& prefix = "");
 
 // Starts the chaosweep binary with `args` in the background; returns its pid.
 int start_chaosweep(const std::string& args);
-// Waits for pid; returns its exit code, or 128 + signal.
-int wait_exit(int pid);
+// Waits for pid; returns its exit code, or 128 + signal. `max_rss_kib`, when
+// given, receives the process's peak resident set size.
+int wait_exit(int pid, long* max_rss_kib = nullptr);
 
 // A small, fast, valid Arnold run: a `side` m map with 1 m cells.
 RunParams small_run(double side = 10.0);
