@@ -78,6 +78,14 @@ ClusterPlan read_plan(const fs::path& dir) {
   return p;
 }
 
+// Writes `text` to `path`, throwing when the file cannot be written in full.
+void write_checked(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
 }  // namespace
 
 void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
@@ -91,7 +99,7 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
   struct Opts {
     std::string spec, dir, partition, time, mem;
     int tasks = 0, concurrency = 0, cpus = 1;
-    bool submit = false;
+    bool submit = false, force = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("spec", o->spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
@@ -103,11 +111,15 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--time", o->time, "sbatch --time");
   cmd->add_option("--mem", o->mem, "sbatch --mem");
   cmd->add_flag("--submit", o->submit, "submit with sbatch (array, then the dependent merge job)");
+  cmd->add_flag("--force", o->force, "write over the scripts of an earlier `chaosweep slurm` in DIR");
   cmd->callback([o, &action] {
     action = [o]() -> int {
       SweepSpec spec;
       try {
         spec = load_sweep_spec(o->spec);
+        if (!o->force && fs::exists(fs::path(o->dir) / "cluster.toml"))
+          throw OutputExists("-o: " + o->dir + " already holds a chaosweep slurm sweep (cluster.toml); pass --force "
+                             "to write over its scripts (its shard files stay)");
       } catch (const std::exception& e) {
         std::cerr << "chaosweep slurm: " << e.what() << "\n";
         return exit_bad_input;
@@ -136,13 +148,14 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
           replace_all(text, "@TASKS@", std::to_string(o->tasks));
           replace_all(text, "@SHARDS@", shards);
           const fs::path out = dir / (std::string(name) + ".sbatch");
-          std::ofstream(out) << text;
+          write_checked(out, text);
           fs::permissions(out, fs::perms::owner_exec, fs::perm_options::add);
         }
-        std::ofstream(dir / "cluster.toml") << "# written by chaosweep slurm; read by chaosweep status\n"
-                                             << "spec = " << quote(fs::absolute(o->spec).string()) << "\n"
-                                             << "name = " << quote(spec.name) << "\n"
-                                             << "tasks = " << o->tasks << "\nruns = " << spec.size() << "\n";
+        write_checked(dir / "cluster.toml", "# written by chaosweep slurm; read by chaosweep status\n"
+                                            "spec = " + quote(fs::absolute(o->spec).string()) + "\n" +
+                                            "name = " + quote(spec.name) + "\n" +
+                                            "tasks = " + std::to_string(o->tasks) + "\nruns = " +
+                                            std::to_string(spec.size()) + "\n");
         std::cout << "wrote " << (dir / "sweep.sbatch").string() << " (" << spec.size() << " runs in " << o->tasks
                   << " shards, --array=" << array << ") and " << (dir / "merge.sbatch").string() << "\n";
         if (!o->submit) return exit_ok;

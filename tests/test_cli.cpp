@@ -377,6 +377,20 @@ TEST(CliMerge, ExistingOutputIsRefusedWithoutForce) {
   EXPECT_EQ(chaosweep::count_rows(tmp.file("m.h5")), 18);
 }
 
+TEST(CliSlurm, ADirectoryOfAnEarlierSlurmSweepIsRefusedWithoutForce) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  const std::string args = "slurm " + tmp.file("s.toml") + " -o " + tmp.file("run");
+  ASSERT_EQ(run_chaosweep(args + " --tasks 2").exit_code, 0);
+  const std::string before = chaosweep::test::read_file(tmp.file("run/cluster.toml"));
+  const auto again = run_chaosweep(args + " --tasks 3");
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_NE(again.err.find("already holds a chaosweep slurm sweep"), std::string::npos) << again.err;
+  EXPECT_EQ(chaosweep::test::read_file(tmp.file("run/cluster.toml")), before);
+  ASSERT_EQ(run_chaosweep(args + " --tasks 3 --force").exit_code, 0);
+  EXPECT_NE(chaosweep::test::read_file(tmp.file("run/cluster.toml")).find("tasks = 3"), std::string::npos);
+}
+
 TEST(CliOutputs, TableFigureAndTraceRefuseAnExistingFileWithoutForce) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), small_sweep);
