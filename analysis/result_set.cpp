@@ -16,8 +16,23 @@ ResultSet ResultSet::load(const std::vector<std::string>& paths) {
     try {
       files.push_back(read_all_columns(path));
     } catch (const std::exception& e) {
-      throw AnalysisError(path + ": not a readable chaosweep result file (" + e.what() + ")");
+      // The store's messages name the file and what is wrong with it.
+      const std::string what = e.what();
+      throw AnalysisError(what.find(path) != std::string::npos
+                              ? what
+                              : path + ": not a readable chaosweep result file (" + what + ")");
     }
+    // A foreign /runs (another program's table) lacks the columns every run has.
+    const StoredColumns& f = files.back();
+    auto has_numeric = [&](const char* name) {
+      return std::any_of(f.numeric.begin(), f.numeric.end(), [&](const auto& c) { return c.first == name; });
+    };
+    auto has_text = [&](const char* name) {
+      return std::any_of(f.text.begin(), f.text.end(), [&](const auto& c) { return c.first == name; });
+    };
+    if (!has_numeric("run_id") || !has_text("status"))
+      throw AnalysisError(path + ": /runs has no " + (has_numeric("run_id") ? "'status'" : "'run_id'") +
+                          " column (not a chaosweep result file)");
   }
   // Columns every file has (a merged or older file may carry fewer), with
   // the first file's kinds.

@@ -17,6 +17,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A number for messages ("0.3", "12", "inf", "nan"); local so that the fuzz
+// target builds from this file's few dependencies.
+std::string format_number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
   throw std::runtime_error("environment " + file + ": " + what);
 }
@@ -26,14 +34,26 @@ double number(const toml::node& n, const std::string& file, const std::string& k
   fail(file, "'" + key + "' must be a number");
 }
 
+// A number that must be finite (TOML has nan and inf literals).
+double finite_number(const toml::node& n, const std::string& file, const std::string& key) {
+  const double v = number(n, file, key);
+  if (!std::isfinite(v)) fail(file, "'" + key + "' = " + format_number(v) + " must be a finite number");
+  return v;
+}
+
 std::pair<double, double> pair_of(const toml::node& n, const std::string& file, const std::string& key) {
   if (n.is_number()) {
-    const double v = number(n, file, key);
+    const double v = finite_number(n, file, key);
     return {v, v};
   }
   const toml::array* a = n.as_array();
   if (!a || a->size() != 2) fail(file, "'" + key + "' must be a number or [x, y]");
-  return {number(*a->get(0), file, key), number(*a->get(1), file, key)};
+  return {finite_number(*a->get(0), file, key + "[0]"), finite_number(*a->get(1), file, key + "[1]")};
+}
+
+// "[0, 10] x [0, 10] m": the map's extent, for messages.
+std::string map_bounds(const Environment& env) {
+  return "[0, " + format_number(env.lx) + "] x [0, " + format_number(env.ly) + "] m";
 }
 
 Environment parse_text(const std::string& text, const std::string& path, double size_x, double size_y,
@@ -71,7 +91,8 @@ Environment parse_text(const std::string& text, const std::string& path, double 
   }
   if (const toml::node* s = t.get("size")) {
     std::tie(env.lx, env.ly) = pair_of(*s, path, "size");
-    if (!(env.lx > 0 && env.ly > 0)) fail(path, "'size' must be positive");
+    if (!(env.lx > 0 && env.ly > 0))
+      fail(path, "'size' = " + format_number(env.lx) + " x " + format_number(env.ly) + " must be positive");
   } else if (!relative) {
     fail(path, "'size' is required when units = \"m\"");
   } else {
@@ -103,7 +124,7 @@ Environment parse_text(const std::string& text, const std::string& path, double 
       for (int j = 0; j < 4; ++j) {
         const toml::node* n = r->get(names[j]);
         if (!n) fail(path, where + " lacks '" + names[j] + "'");
-        v[j] = number(*n, path, where + "." + names[j]);
+        v[j] = finite_number(*n, path, where + "." + names[j]);
       }
       for (auto&& [k, node] : *r) {
         (void)node;
@@ -112,7 +133,19 @@ Environment parse_text(const std::string& text, const std::string& path, double 
           fail(path, where + " has unknown key '" + key + "' (allowed: x, y, w, h)");
       }
       if (!(v[2] > 0 && v[3] > 0)) fail(path, where + ": w and h must be positive");
-      env.obstacles.push_back({v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy});
+      const Rect rect{v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy};
+      // Every obstacle lies within the map (touching its edge is fine; a
+      // relative 0.7 + 0.3 may round above 1, hence the tolerance). Overlapping
+      // obstacles are fine: the map is their union (docs/inputs.md).
+      const double tol_x = 1e-9 * env.lx, tol_y = 1e-9 * env.ly;
+      if (!(rect.x0 >= -tol_x && rect.y0 >= -tol_y && rect.x1 <= env.lx + tol_x && rect.y1 <= env.ly + tol_y)) {
+        const bool wholly = rect.x0 >= env.lx || rect.y0 >= env.ly || rect.x1 <= 0 || rect.y1 <= 0;
+        fail(path, where + " spans [" + format_number(rect.x0) + ", " + format_number(rect.x1) + "] x [" +
+                       format_number(rect.y0) + ", " + format_number(rect.y1) + "] m: " +
+                       (wholly ? "it lies outside" : "it reaches outside") + " the map " + map_bounds(env) +
+                       (relative ? " (units = \"relative\": need 0 <= x, x + w <= 1, 0 <= y, y + h <= 1)" : ""));
+      }
+      env.obstacles.push_back(rect);
     }
   }
   if (const toml::node* c = t.get("clutter")) {
@@ -148,6 +181,15 @@ Environment parse_text(const std::string& text, const std::string& path, double 
     env.name += ":" + std::to_string(spec.seed);
   } else if (clutter_seed) {
     fail(path, "':SEED' is only for environments with a 'clutter' table");
+  }
+  // The file's own start must be a place a run can start from (a run's own
+  // start, which wins over it, is checked when the run starts).
+  if (env.start) {
+    const auto [x, y] = *env.start;
+    const std::string at = "'start' = (" + format_number(x) + ", " + format_number(y) + ") m";
+    if (x < 0 || x > env.lx || y < 0 || y > env.ly) fail(path, at + " is outside the map " + map_bounds(env));
+    if (const int k = env.obstacle_at(x, y); k >= 0)
+      fail(path, at + " lies inside obstacles[" + std::to_string(k) + "]");
   }
   return env;
 }

@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -36,35 +37,45 @@ struct RawRows {
   }
 };
 
+// Reads /runs of `path`; a file that is missing, not HDF5, truncated or not a
+// result file is refused naming it (count_rows checks all that, quietly).
 void read_raw(const std::string& path, RawRows& out) {
-  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file < 0) fail("cannot open " + path);
-  hid_t dset = H5Dopen2(file, "/runs", H5P_DEFAULT);
+  const hsize_t n = hsize_t(count_rows(path));
+  herr_t rc = 0;
+  hid_t file = -1, dset = -1;
+  H5E_BEGIN_TRY {
+    file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    dset = file >= 0 ? H5Dopen2(file, "/runs", H5P_DEFAULT) : -1;
+  }
+  H5E_END_TRY;
   if (dset < 0) {
-    H5Fclose(file);
-    fail(path + " has no /runs dataset");
+    if (file >= 0) H5Fclose(file);
+    fail("cannot open /runs of " + path);
   }
   hid_t ftype = H5Dget_type(dset);
   out.type = H5Tget_native_type(ftype, H5T_DIR_ASCEND);
   H5Tclose(ftype);
   out.row_size = H5Tget_size(out.type);
   const int idx = H5Tget_member_index(out.type, "run_id");
-  if (idx < 0) fail(path + ": /runs has no run_id column");
+  if (idx < 0 || H5Tget_member_class(out.type, unsigned(idx)) != H5T_INTEGER) {
+    H5Dclose(dset);
+    H5Fclose(file);
+    fail(path + ": /runs has no integer run_id column (not a chaosweep result file)");
+  }
   out.id_offset = H5Tget_member_offset(out.type, unsigned(idx));
-  hid_t space = H5Dget_space(dset);
-  hsize_t n = 0;
-  H5Sget_simple_extent_dims(space, &n, nullptr);
-  H5Sclose(space);
   out.bytes.resize(std::size_t(n) * out.row_size);
-  const herr_t rc = n ? H5Dread(dset, out.type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.bytes.data()) : 0;
+  H5E_BEGIN_TRY { rc = n ? H5Dread(dset, out.type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.bytes.data()) : 0; }
+  H5E_END_TRY;
   H5Dclose(dset);
   H5Fclose(file);
-  if (rc < 0) fail("cannot read /runs of " + path);
+  if (rc < 0) fail("cannot read /runs of " + path + ": the file is damaged");
 }
 
 std::vector<std::string> attribute_names(const std::string& path) {
   std::vector<std::string> names;
-  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t file;
+  H5E_BEGIN_TRY { file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); }
+  H5E_END_TRY;
   if (file < 0) return names;
   H5O_info_t info;
   H5Oget_info2(file, &info, H5O_INFO_NUM_ATTRS);
@@ -77,6 +88,32 @@ std::vector<std::string> attribute_names(const std::string& path) {
   return names;
 }
 
+// A shard file's place in its sweep, from its provenance attributes.
+struct ShardOf {
+  std::string spec_hash, shard;  // shard as written: "K/N"
+  int count = 1;
+  std::int64_t runs_total = 0;
+};
+
+ShardOf shard_of(const std::string& path) {
+  ShardOf s;
+  s.spec_hash = read_attribute(path, "spec_hash");  // throws naming the file
+  s.shard = read_attribute(path, "shard");
+  const std::string total = read_attribute(path, "runs_total");
+  int k = -1;
+  char tail = 0;
+  if (std::sscanf(s.shard.c_str(), "%d/%d%c", &k, &s.count, &tail) != 2 || k < 0 || s.count < 1 || k >= s.count)
+    fail(path + ": attribute 'shard' is '" + s.shard +
+         "', not K/N (a merged file cannot be merged again: give its shard files)");
+  try {
+    std::size_t used = 0;
+    s.runs_total = std::stoll(total, &used);
+    if (used != total.size() || s.runs_total < 0) throw std::invalid_argument(total);
+  } catch (const std::exception&) {
+    fail(path + ": attribute 'runs_total' is '" + total + "', not a run count");
+  }
+  return s;
+}
 
 }  // namespace
 
@@ -101,18 +138,28 @@ std::string MergeReport::text() const {
 MergeReport merge_results(const std::vector<std::string>& inputs, const std::string& output) {
   if (inputs.empty()) fail("no input files");
   MergeReport report;
-  const std::string spec_hash = read_attribute(inputs[0], "spec_hash");
-  report.runs_total = std::stoll(read_attribute(inputs[0], "runs_total"));
+  std::vector<ShardOf> shards;
+  for (const std::string& in : inputs) {
+    if (!fs::exists(in)) fail(in + " does not exist");
+    shards.push_back(shard_of(in));
+  }
+  report.runs_total = shards[0].runs_total;
+  report.shard_count = shards[0].count;
   std::vector<RawRows> parts(inputs.size());
   for (std::size_t f = 0; f < inputs.size(); ++f) {
-    if (!fs::exists(inputs[f])) fail(inputs[f] + " does not exist");
-    if (read_attribute(inputs[f], "spec_hash") != spec_hash)
+    if (shards[f].spec_hash != shards[0].spec_hash)
       fail(inputs[f] + " comes from another spec than " + inputs[0] + " (spec_hash differs)");
-    const std::string shard = read_attribute(inputs[f], "shard");
-    const int n = std::stoi(shard.substr(shard.find('/') + 1));
-    if (f == 0) report.shard_count = n;
-    else if (n != report.shard_count)
-      fail(inputs[f] + " is shard " + shard + " but " + inputs[0] + " has " + std::to_string(report.shard_count) + " shards");
+    if (shards[f].count != report.shard_count)
+      fail(inputs[f] + " is shard " + shards[f].shard + " but " + inputs[0] + " has " +
+           std::to_string(report.shard_count) + " shards");
+    for (std::size_t g = 0; g < f; ++g) {
+      std::error_code ec;
+      if (fs::equivalent(inputs[f], inputs[g], ec))
+        fail(inputs[f] + " is given twice (also as " + inputs[g] + ")");
+      if (shards[f].shard == shards[g].shard)
+        fail(inputs[f] + " and " + inputs[g] + " are both shard " + shards[f].shard +
+             " of the spec: give each shard once");
+    }
     read_raw(inputs[f], parts[f]);
     if (f > 0 && H5Tequal(parts[f].type, parts[0].type) <= 0)
       fail(inputs[f] + " has other columns than " + inputs[0] + " (written by another engine version)");

@@ -31,11 +31,27 @@ hid_t text_type(std::size_t size) {
   return t;
 }
 
-// Opens quietly: a failure becomes our own error message, not an HDF5 stack dump.
-hid_t open_quiet(const std::string& path, unsigned flags) {
-  hid_t f;
-  H5E_BEGIN_TRY { f = H5Fopen(path.c_str(), flags, H5P_DEFAULT); }
+// What a reader says when a result file cannot be used: the file, and what
+// is wrong with it (no "HDF5:" prefix: the user gave a file, not a library).
+[[noreturn]] void input_fail(const std::string& what) { throw std::runtime_error(what); }
+
+// Opens a result file read-only and quietly: a failure becomes our own
+// message naming the file and what is wrong with it, never HDF5's error
+// stack on stderr.
+hid_t open_for_reading(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) input_fail(path + " does not exist");
+  if (fs::is_directory(path, ec)) input_fail(path + " is a directory, not a result file");
+  if (access(path.c_str(), R_OK) != 0) input_fail(path + " cannot be read: " + std::strerror(errno));
+  htri_t is_hdf5;
+  hid_t f = -1;
+  H5E_BEGIN_TRY {
+    is_hdf5 = H5Fis_hdf5(path.c_str());
+    if (is_hdf5 > 0) f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  }
   H5E_END_TRY;
+  if (is_hdf5 <= 0) input_fail(path + " is not an HDF5 file (not a chaosweep result file)");
+  if (f < 0) input_fail(path + " is truncated or damaged: HDF5 cannot open it");
   return f;
 }
 
@@ -52,12 +68,16 @@ struct Handle {
 struct RunsDataset {
   Handle file, dset;
   hsize_t rows = 0;
-  explicit RunsDataset(const std::string& path)
-      : file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose}, dset{-1, H5Dclose} {
-    if (file.id < 0) h5_fail("cannot open " + path);
-    dset.id = H5Dopen2(file.id, "/runs", H5P_DEFAULT);
-    if (dset.id < 0) h5_fail(path + " has no /runs dataset");
+  explicit RunsDataset(const std::string& path) : file{open_for_reading(path), H5Fclose}, dset{-1, H5Dclose} {
+    H5E_BEGIN_TRY { dset.id = H5Dopen2(file.id, "/runs", H5P_DEFAULT); }
+    H5E_END_TRY;
+    if (dset.id < 0) input_fail(path + " has no /runs dataset (not a chaosweep result file)");
+    Handle type{H5Dget_type(dset.id), H5Tclose};
+    if (H5Tget_class(type.id) != H5T_COMPOUND)
+      input_fail(path + ": /runs is not a table of columns (not a chaosweep result file)");
     Handle space{H5Dget_space(dset.id), H5Sclose};
+    if (H5Sget_simple_extent_ndims(space.id) != 1)
+      input_fail(path + ": /runs is not a one-dimensional table (not a chaosweep result file)");
     H5Sget_simple_extent_dims(space.id, &rows, nullptr);
   }
 };
@@ -69,11 +89,19 @@ std::vector<T> read_member(const std::string& path, const std::string& column, h
   const RunsDataset runs(path);
   const hid_t dset_id = runs.dset.id;
   const hsize_t n = runs.rows;
+  {
+    Handle ftype{H5Dget_type(dset_id), H5Tclose};
+    if (H5Tget_member_index(ftype.id, column.c_str()) < 0) input_fail(path + ": /runs has no column '" + column + "'");
+  }
   Handle mem{H5Tcreate(H5T_COMPOUND, elem_size), H5Tclose};
   H5Tinsert(mem.id, column.c_str(), 0, member_type);
   std::vector<T> out(n);
-  if (n > 0 && H5Dread(dset_id, mem.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    h5_fail("cannot read column '" + column + "' of " + path);
+  herr_t rc = 0;
+  H5E_BEGIN_TRY {
+    if (n > 0) rc = H5Dread(dset_id, mem.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+  }
+  H5E_END_TRY;
+  if (rc < 0) input_fail("cannot read column '" + column + "' of " + path + " (the file is damaged or the column's type is foreign)");
   return out;
 }
 
@@ -333,8 +361,11 @@ StoredColumns read_all_columns(const std::string& path) {
     buf.resize(std::size_t(n) * row_size);
     H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &start, nullptr, &n, nullptr);
     Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
-    if (H5Dread(runs.dset.id, native.id, mspace.id, fspace.id, H5P_DEFAULT, buf.data()) < 0)
-      h5_fail("cannot read /runs of " + path + " (rows " + std::to_string(start) + "..)");
+    herr_t rc;
+    H5E_BEGIN_TRY { rc = H5Dread(runs.dset.id, native.id, mspace.id, fspace.id, H5P_DEFAULT, buf.data()); }
+    H5E_END_TRY;
+    if (rc < 0)
+      input_fail("cannot read /runs of " + path + " (rows " + std::to_string(start) + "..): the file is damaged");
     for (hsize_t r = 0; r < n; ++r) {
       const unsigned char* row = buf.data() + std::size_t(r) * row_size;
       for (const Member& m : members) {
@@ -368,15 +399,19 @@ StoredColumns read_all_columns(const std::string& path) {
 }
 
 std::string read_attribute(const std::string& path, const std::string& name) {
-  Handle file{open_quiet(path, H5F_ACC_RDONLY), H5Fclose};
-  if (file.id < 0) h5_fail("cannot open " + path);
-  Handle attr{H5Aopen(file.id, name.c_str(), H5P_DEFAULT), H5Aclose};
-  if (attr.id < 0) h5_fail(path + " has no attribute " + name);
+  Handle file{open_for_reading(path), H5Fclose};
+  Handle attr{-1, H5Aclose};
+  H5E_BEGIN_TRY { attr.id = H5Aopen(file.id, name.c_str(), H5P_DEFAULT); }
+  H5E_END_TRY;
+  if (attr.id < 0) input_fail(path + " has no attribute '" + name + "' (not a chaosweep result file?)");
   Handle t{H5Tcopy(H5T_C_S1), H5Tclose};
   H5Tset_size(t.id, H5T_VARIABLE);
   H5Tset_cset(t.id, H5T_CSET_UTF8);
   char* data = nullptr;
-  if (H5Aread(attr.id, t.id, &data) < 0) h5_fail("cannot read attribute " + name);
+  herr_t rc;
+  H5E_BEGIN_TRY { rc = H5Aread(attr.id, t.id, &data); }
+  H5E_END_TRY;
+  if (rc < 0) input_fail(path + ": cannot read attribute '" + name + "' as text");
   std::string out = data ? data : "";
   H5free_memory(data);
   return out;
