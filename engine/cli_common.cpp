@@ -69,26 +69,24 @@ void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw) {
   }
 }
 
+namespace {
+// Applies one flag; its errors start with the flag's name (once).
+void apply_flag(RunSpec& run, const std::string& key, const std::string& text) {
+  try {
+    apply_setting(run, key, parse_flag_value(key, text));
+  } catch (const SpecError& e) {
+    const std::string msg = e.what();
+    throw SpecError(msg.rfind("--", 0) == 0 ? msg : flag_of(key) + ": " + msg);
+  }
+}
+}  // namespace
+
 void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& run) {
   // Aliases first so that an explicit --size-x etc. wins over --size.
-  for (const char* alias : {"env", "size", "start", "ic"}) {
-    auto it = raw.find(alias);
-    if (it == raw.end()) continue;
-    try {
-      apply_setting(run, it->first, parse_flag_value(it->first, it->second));
-    } catch (const SpecError& e) {
-      throw SpecError(flag_of(it->first) + ": " + e.what());
-    }
-  }
-  for (const auto& [key, text] : raw) {
-    if (key == "env" || key == "size" || key == "start" || key == "ic") continue;
-    try {
-      apply_setting(run, key, parse_flag_value(key, text));
-    } catch (const SpecError& e) {
-      const std::string msg = e.what();
-      throw SpecError(msg.rfind("--", 0) == 0 ? msg : flag_of(key) + ": " + msg);
-    }
-  }
+  for (const char* alias : {"env", "size", "start", "ic"})
+    if (auto it = raw.find(alias); it != raw.end()) apply_flag(run, it->first, it->second);
+  for (const auto& [key, text] : raw)
+    if (key != "env" && key != "size" && key != "start" && key != "ic") apply_flag(run, key, text);
 }
 
 std::string host_name() {

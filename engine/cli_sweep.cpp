@@ -91,7 +91,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
   auto o = std::make_shared<Opts>();
   cmd->add_option("spec", o->spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->out, "result file (HDF5)")->required();
-  cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(CLI::Number)->check(CLI::Range(0, 4096));
   cmd->add_option("--shard", o->shard,
                   "run only shard K of N (run_ids i with i % N == K); default: from SLURM_ARRAY_TASK_ID "
                   "and SLURM_ARRAY_TASK_COUNT when set")
@@ -100,7 +100,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
                 "continue OUT.partial of the same spec and shard (or do nothing if OUT is complete)");
   cmd->add_flag("--force", o->force,
                 "run even though OUT (replaced when this sweep completes) or OUT.partial (started over) exists");
-  cmd->add_option("--batch", o->batch, "runs per write to OUT.partial")->check(CLI::Range(1, 1 << 24));
+  cmd->add_option("--batch", o->batch, "runs per write to OUT.partial")->check(CLI::Number)->check(CLI::Range(1, 1 << 24));
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors (and progress only with --progress=always)");
   cmd->add_option("--progress", o->progress,
                   "progress on stderr: a live line on a terminal, a plain line every 30 s otherwise")

@@ -10,7 +10,13 @@
 namespace chaosweep {
 
 void preload_environments(const SweepSpec& spec, EnvironmentCache& cache) {
-  for (const RunSpec& r : spec.environment_variants()) cache.get(r.env, r.params.size_x, r.params.size_y);
+  for (const MapVariant& v : spec.environment_variants()) {
+    try {
+      cache.get(v.run.env, v.run.params.size_x, v.run.params.size_y);
+    } catch (const std::exception& e) {
+      throw SpecError(v.origin + ": " + e.what());
+    }
+  }
 }
 
 namespace {

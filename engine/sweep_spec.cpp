@@ -286,8 +286,8 @@ RunSpec SweepSpec::run(std::int64_t i) const {
   return r;
 }
 
-std::vector<RunSpec> SweepSpec::environment_variants() const {
-  std::vector<RunSpec> out;
+std::vector<MapVariant> SweepSpec::environment_variants() const {
+  std::vector<MapVariant> out;
   const auto sets_map = [](const Axis* a) {
     for (const std::string& k : a->keys)
       if (k == "env" || k == "size" || k == "size_x" || k == "size_y") return true;
@@ -303,7 +303,10 @@ std::vector<RunSpec> SweepSpec::environment_variants() const {
     // Every combination of the map axes' positions, the other axes at 0.
     std::vector<std::size_t> pos(order.size(), 0);
     for (;;) {
-      out.push_back(compose(*this, part, order, pos));
+      std::string origin = part ? "part '" + part->name + "'" : "";
+      for (std::size_t k : map_axes)
+        origin += (origin.empty() ? "" : ", ") + order[k]->name() + "[" + std::to_string(pos[k]) + "]";
+      out.push_back({compose(*this, part, order, pos), origin.empty() ? "fixed" : origin});
       std::size_t m = map_axes.size();
       while (m > 0 && ++pos[map_axes[m - 1]] == order[map_axes[m - 1]]->size()) pos[map_axes[--m]] = 0;
       if (m == 0) break;

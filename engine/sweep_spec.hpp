@@ -102,12 +102,19 @@ struct SweepSpec {
   // A run for every combination of the axes that set env or the map size
   // (other axes at their first value), per part: each environment the runs
   // load, without visiting every run.
-  std::vector<RunSpec> environment_variants() const;
+  std::vector<struct MapVariant> environment_variants() const;
 
   std::int64_t shared_size() const;                 // product of `axes` (1 if none)
   std::int64_t part_size(std::size_t k) const;      // runs of parts[k]
   std::int64_t part_offset(std::size_t k) const;    // run_id of parts[k]'s first run
   std::size_t part_of(std::int64_t run_id) const;   // index of the part holding run_id (parts non-empty)
+};
+
+// One of SweepSpec::environment_variants: a run, and where in the spec its
+// map comes from ("fixed", "env[2]", "part 'IS', case(label, env)[1]").
+struct MapVariant {
+  RunSpec run;
+  std::string origin;
 };
 
 // `source_name` is used in messages; `dir` resolves `extends`.

@@ -17,7 +17,7 @@ namespace chaosweep {
 // 2^-10 and the median is a bin's middle (within 0.05%).
 class SweepSummary {
  public:
-  static constexpr std::size_t exact_limit = std::size_t(1) << 20;  // 8 MiB of times
+  static constexpr std::size_t exact_limit = std::size_t(1) << 16;  // 512 KiB of times
 
   void add(const RunRow& row);
   std::int64_t runs() const { return runs_; }

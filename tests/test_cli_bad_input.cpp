@@ -152,9 +152,17 @@ TEST(CliSweep, AnEnvironmentThatDoesNotExistIsNamedAndNothingIsWritten) {
     write_file(tmp.file("s.toml"), spec);
     const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("out.h5"));
     EXPECT_EQ(r.exit_code, 2) << env;
-    EXPECT_TRUE(has(r.err, "environment '" + env + "' not found")) << r.err;
+    EXPECT_TRUE(has(r.err, "fixed: environment '" + env + "' not found")) << r.err;
     expect_nothing_written(tmp.file("out.h5"));
   }
+  // On an axis: the axis and the position are named.
+  std::string spec = small_sweep;
+  spec += "env = [\"empty\", \"no_such_env\"]\n";
+  write_file(tmp.file("s.toml"), spec);
+  const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("out.h5"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "env[1]: environment 'no_such_env' not found")) << r.err;
+  expect_nothing_written(tmp.file("out.h5"));
 }
 
 // ------------------------------------------------------- environment files
