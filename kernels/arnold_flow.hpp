@@ -63,6 +63,15 @@ inline Vec3<T> arnold_rhs(const Vec3<T>& u, const ArnoldCoeffs<T>& k) {
 //   |K3 - K2| <= (hM/2) |K2 - K1| <= 0.001,  |2 K3 - K2| <= 0.101,
 // so two polynomial lengths serve (ShiftForm). A run's mode is a function of
 // its parameters only, so every width computes a lane alike.
+//   The next step's stage 1 comes the same way (its trig is carried, see
+// rk4_step): u_next = u + (K1 + 2 K2 + 2 K3 + K4) / 3 is stage 4 shifted by
+// d = (K1 + 2 K2 - 4 K3 + K4) / 3, which is O(L^3), L = hM/2 <= 0.1: with
+// J = (h/2) Dk(u) and Taylor remainders R_i, |R(v)| <= L |v|^2 / 2 (L also
+// bounds (h/2) D2k, each component being two sines of one coordinate each),
+// K2 = K1 + J K1 + R1, K3 = K1 + J K2 + R2, K4 = K1 + 2 J K3 + R4, so
+//   3 d = 2 J ((K1 - K2) + (K3 - K2)) + 2 R1 - 4 R2 + R4,
+//   |3 d| <= 2 L (L^2 + L^3) + L^3 + 2 L^3 + 2 L^3 = 7 L^3 + 2 L^4,
+//   |d| <= 0.0024  (the carry form).
 inline constexpr double small_shift = 0.2;
 
 inline bool small_shift_mode(double h, double A, double B, double C) {
@@ -70,10 +79,13 @@ inline bool small_shift_mode(double h, double A, double B, double C) {
   return h * std::max({a + c, b + a, c + b}) <= small_shift;
 }
 
-// Polynomial lengths, each exact to below 1e-18 up to its bound:
-// tiny |d| <= 0.01 (Taylor to d^5 / d^6), short |d| <= 0.11 (to d^9 / d^10).
-enum class ShiftForm { tiny, short_ };
-inline constexpr double shift_bound(ShiftForm f) { return f == ShiftForm::tiny ? 0.01 : 0.11; }
+// Polynomial lengths, each exact to below 1e-18 up to its bound: carry
+// |d| <= 0.0025 (Taylor to d^5 / d^4), tiny |d| <= 0.01 (to d^5 / d^6),
+// short |d| <= 0.11 (to d^9; cos d - 1 by a minimax fit, see below).
+enum class ShiftForm { carry, tiny, short_ };
+inline constexpr double shift_bound(ShiftForm f) {
+  return f == ShiftForm::carry ? 0.0025 : f == ShiftForm::tiny ? 0.01 : 0.11;
+}
 
 // sin(u + d), cos(u + d) from su = sin u, cu = cos u, as
 // su + (su (cos d - 1) + cu sin d): the correction is formed apart from the
@@ -84,15 +96,19 @@ inline void sincos_shift(T su, T cu, T d, T& s, T& c) {
   using lane::splat;
   const T d2 = d * d;
   T ps, pc;
-  if constexpr (F == ShiftForm::tiny) {
+  if constexpr (F == ShiftForm::carry) {
+    ps = fma(d2, splat<T>(1.0 / 120.0), splat<T>(-1.0 / 6.0));
+    pc = splat<T>(1.0 / 24.0);  // d^6 / 720 < 4e-19
+  } else if constexpr (F == ShiftForm::tiny) {
     ps = fma(d2, splat<T>(1.0 / 120.0), splat<T>(-1.0 / 6.0));
     pc = fma(d2, splat<T>(-1.0 / 720.0), splat<T>(1.0 / 24.0));
   } else {
     ps = fma(d2, splat<T>(1.0 / 362880.0), splat<T>(-1.0 / 5040.0));
     ps = fma(ps, d2, splat<T>(1.0 / 120.0));
     ps = fma(ps, d2, splat<T>(-1.0 / 6.0));
-    pc = fma(d2, splat<T>(-1.0 / 3628800.0), splat<T>(1.0 / 40320.0));
-    pc = fma(pc, d2, splat<T>(-1.0 / 720.0));
+    // Remez (weight d^4) on |d| <= 0.11: error 8e-19 with a term fewer than
+    // Taylor's (7e-17 to d^8).
+    pc = fma(d2, splat<T>(2.4796075379955032e-05), splat<T>(-0.0013888888620835391));
     pc = fma(pc, d2, splat<T>(1.0 / 24.0));
   }
   const T sd = fma(d * d2, ps, d);             // sin d
@@ -138,21 +154,28 @@ inline T heading_sin(const Trig3<T>& t, const HeadingSelect<T>& h) {
   return lane::select(h.is_x, t.sx, lane::select(h.is_y, t.sy, t.sz));
 }
 
-// Result of one RK4 step: the new (wrapped) Arnold state and the robot's
-// displacement. The robot's equations depend on the heading only, so its
-// displacement is the RK4 weighted mean of the stage headings times h_pos.
+// Result of one RK4 step: the new (wrapped) Arnold state, its trig (the next
+// step's stage 1) and the robot's displacement. The robot's equations depend
+// on the heading only, so its displacement is the RK4 weighted mean of the
+// stage headings times h_pos.
 template <class T>
 struct Rk4Step {
   Vec3<T> u;
+  Trig3<T> t;
   T dX, dY;
 };
 
 // h: step of the Arnold system; h_pos: robot distance per step (f * v * h),
 // which is how the scaling factor f enters (SPEC 2, "Scaling factor f").
 // `small`: the lane runs in small-shift mode (see small_shift_mode).
+// t1: the trig of u, carried from the previous step (Rk4Step::t) or trig3(u)
+// at a run's start. In small-shift mode a step takes no full sincos at all:
+// the carried trig drifts from u's by rounding only (< 7e-12 over 10^6
+// steps, tests/test_kernels.cpp; a run re-takes it at every segment start),
+// far below RK4's local error (~1e-9 per step at h = 0.1).
 template <class T>
-inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const HeadingSelect<T>& hs,
-                           T h, T h_pos, decltype(T() < T()) small) {
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k,
+                           const HeadingSelect<T>& hs, T h, T h_pos, decltype(T() < T()) small) {
   using lane::fma;
   const T half = h * lane::splat<T>(0.5);
   const T two = lane::splat<T>(2.0);
@@ -163,7 +186,6 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const Hea
   // 2+3 are summed as they come: this keeps few vectors live. The operations
   // are the same in every width.
   const ArnoldCoeffs<T> kh{half * k.A, half * k.B, half * k.C};
-  const Trig3<T> t1 = trig3(u);
   const Vec3<T> K1 = arnold_rhs(t1, kh);
   const T c1 = heading_cos(t1, hs), s1 = heading_sin(t1, hs);
   const Trig3<T> t2 = trig3_stage<ShiftForm::short_>(t1, K1, u + K1, small);
@@ -178,22 +200,37 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const Hea
   const Vec3<T> K4 = arnold_rhs(t4, kh);
   const T c14 = c1 + heading_cos(t4, hs), s14 = s1 + heading_sin(t4, hs);
 
-  // u + h/6 (k1 + 2 k2 + 2 k3 + k4) = u + (K1 + 2 K2 + 2 K3 + K4) / 3.
+  // u + h/6 (k1 + 2 k2 + 2 k3 + k4) = u + (K1 + 2 K2 + 2 K3 + K4) / 3; the
+  // same sum less 2 K3 is the shift from stage 4 to it (wrapping is by 2 pi).
   const T third = lane::splat<T>(1.0 / 3.0);
+  const Vec3<T> S{fma(two, K23.x, K1.x + K4.x), fma(two, K23.y, K1.y + K4.y), fma(two, K23.z, K1.z + K4.z)};
   Rk4Step<T> out;
-  out.u.x = wrap_pi(fma(third, fma(two, K23.x, K1.x + K4.x), u.x));
-  out.u.y = wrap_pi(fma(third, fma(two, K23.y, K1.y + K4.y), u.y));
-  out.u.z = wrap_pi(fma(third, fma(two, K23.z, K1.z + K4.z), u.z));
+  out.u.x = wrap_pi(fma(third, S.x, u.x));
+  out.u.y = wrap_pi(fma(third, S.y, u.y));
+  out.u.z = wrap_pi(fma(third, S.z, u.z));
+  const Vec3<T> d{fma(third, S.x, -K33.x), fma(third, S.y, -K33.y), fma(third, S.z, -K33.z)};
+  out.t = trig3_stage<ShiftForm::carry>(t4, d, out.u, small);
   const T pos6 = h_pos * lane::splat<T>(1.0 / 6.0);
   out.dX = pos6 * fma(two, c23, c14);
   out.dY = pos6 * fma(two, s23, s14);
   return out;
 }
 
-// Scalar convenience: the mode from the run's own parameters.
+// A step from u alone (no carried trig), as at a run's start.
+template <class T>
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const HeadingSelect<T>& hs, T h,
+                           T h_pos, decltype(T() < T()) small) {
+  return rk4_step<T>(u, trig3(u), k, hs, h, h_pos, small);
+}
+
+// Scalar conveniences: the mode from the run's own parameters.
+inline Rk4Step<double> rk4_step(const Vec3<double>& u, const Trig3<double>& t, const ArnoldCoeffs<double>& k,
+                                const HeadingSelect<double>& hs, double h, double h_pos) {
+  return rk4_step<double>(u, t, k, hs, h, h_pos, small_shift_mode(h, k.A, k.B, k.C));
+}
 inline Rk4Step<double> rk4_step(const Vec3<double>& u, const ArnoldCoeffs<double>& k,
                                 const HeadingSelect<double>& hs, double h, double h_pos) {
-  return rk4_step<double>(u, k, hs, h, h_pos, small_shift_mode(h, k.A, k.B, k.C));
+  return rk4_step(u, trig3(u), k, hs, h, h_pos);
 }
 
 }  // namespace chaosweep

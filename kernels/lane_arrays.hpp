@@ -10,6 +10,8 @@ struct LaneArrays {
   int lanes = 0;
   // Arnold state and step parameters per lane (ds as 1.0, 2.0, 3.0).
   alignas(64) double x[max_lanes], y[max_lanes], z[max_lanes];
+  // Their sines and cosines, carried from step to step (rk4_step's t1).
+  alignas(64) double sx[max_lanes], cx[max_lanes], sy[max_lanes], cy[max_lanes], sz[max_lanes], cz[max_lanes];
   alignas(64) double A[max_lanes], B[max_lanes], C[max_lanes];
   alignas(64) double h[max_lanes], h_pos[max_lanes], ds[max_lanes];
   alignas(64) double small[max_lanes];  // 1: small-shift mode (arnold_flow.hpp)

@@ -72,10 +72,12 @@ template <class V, int N>
       for (int k = 0; k < N; ++k) {
         const int o = g + k * w;
         const Vec3<V> u{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)};
+        const Trig3<V> t{lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o),
+                         lane_load<V>(a.cy + o), lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)};
         const ArnoldCoeffs<V> c{lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
         const V ds = lane_load<V>(a.ds + o);
         const HeadingSelect<V> hs{ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
-        s[k] = rk4_step(u, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o),
+        s[k] = rk4_step(u, t, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o),
                         lane_load<V>(a.small + o) == lane::splat<V>(1.0));
       }
       for (int k = 0; k < N; ++k) {
@@ -83,6 +85,12 @@ template <class V, int N>
         lane_store(a.x + o, s[k].u.x);
         lane_store(a.y + o, s[k].u.y);
         lane_store(a.z + o, s[k].u.z);
+        lane_store(a.sx + o, s[k].t.sx);
+        lane_store(a.cx + o, s[k].t.cx);
+        lane_store(a.sy + o, s[k].t.sy);
+        lane_store(a.cy + o, s[k].t.cy);
+        lane_store(a.sz + o, s[k].t.sz);
+        lane_store(a.cz + o, s[k].t.cz);
         lane_store(a.dX + o, s[k].dX);
         lane_store(a.dY + o, s[k].dY);
         quiet |= fast_path<V>(a, o, s[k]) << o;

@@ -43,7 +43,7 @@ PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid&
     : p_(p), env_(env), grid_(grid), r_(r), trace_(trace),
       needed_(cells_needed(p.dc, grid.free_cells())),
       budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
-      k_{p.A, p.B, p.C}, u_(initial_state(p)), ds_(p.ds_index), h_(p.dt),
+      k_{p.A, p.B, p.C}, u_(initial_state(p)), trig_(trig3(u_)), ds_(p.ds_index), h_(p.dt),
       last_visited_(0), th_(auto_th(p, env)), robot_(p, env, grid),
       logistic_{p.logistic_x0, p.logistic_r}, zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
   last_visited_ = grid_.visited_cells();
@@ -88,6 +88,7 @@ void PlannerRun::begin_segment() {
   seg_c_u_ = grid_.free_cells() - grid_.visited_cells();  // unvisited before the segment
   seg_before_ = grid_.visited_cells();
   seg_step_ = 0;
+  trig_ = trig3(u_);  // a segment starts from exact trig: bounds the carried trig's drift
 }
 
 void PlannerRun::end_segment() {
@@ -107,6 +108,12 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.x[l] = u_.x;
   a.y[l] = u_.y;
   a.z[l] = u_.z;
+  a.sx[l] = trig_.sx;
+  a.cx[l] = trig_.cx;
+  a.sy[l] = trig_.sy;
+  a.cy[l] = trig_.cy;
+  a.sz[l] = trig_.sz;
+  a.cz[l] = trig_.cz;
   a.A[l] = p_.A;
   a.B[l] = p_.B;
   a.C[l] = p_.C;
@@ -142,7 +149,8 @@ bool PlannerRun::lane_step(LaneArrays& a, int l) {
   t_ = a.t[l];
   r_.steps = std::int64_t(a.steps[l]);
   seg_step_ = int(a.seg_step[l]);
-  const bool segment_or_end = arnold_step_done({a.x[l], a.y[l], a.z[l]}, a.dX[l], a.dY[l]);
+  const bool segment_or_end = arnold_step_done({a.x[l], a.y[l], a.z[l]},
+                                                     {a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, a.dX[l], a.dY[l]);
   if (ended_) return true;
   if (segment_or_end) {  // DSindex or the robot may have changed: all of it
     write_lane(a, l);
@@ -166,9 +174,10 @@ bool PlannerRun::point_done(double dt) {
   return true;
 }
 
-bool PlannerRun::arnold_step_done(const Vec3<double>& u, double dX, double dY) {
+bool PlannerRun::arnold_step_done(const Vec3<double>& u, const Trig3<double>& t, double dX, double dY) {
   robot_.move(dX, dY);
   u_ = u;
+  trig_ = t;
   r_.steps += 1;
   if (!finite(u_)) {
     end(Status::diverged, "non-finite Arnold state");
@@ -180,16 +189,17 @@ bool PlannerRun::arnold_step_done(const Vec3<double>& u, double dX, double dY) {
 void PlannerRun::arnold_step() {
   const HeadingSelect<double> hs = heading_select(ds_);
   const double h_pos = p_.f * p_.v * h_;
-  const Rk4Step<double> full = rk4_step(u_, k_, hs, h_, h_pos);
+  const Rk4Step<double> full = rk4_step(u_, trig_, k_, hs, h_, h_pos);
   if (p_.integrator == Integrator::rk4_doubling) {
     const double hh = 0.5 * h_, hh_pos = 0.5 * h_pos;
-    const Rk4Step<double> a = rk4_step(u_, k_, hs, hh, hh_pos);
-    const Rk4Step<double> b = rk4_step(a.u, k_, hs, hh, hh_pos);
+    const Rk4Step<double> a = rk4_step(u_, trig_, k_, hs, hh, hh_pos);
+    const Rk4Step<double> b = rk4_step(a.u, a.t, k_, hs, hh, hh_pos);
     if (std::fabs(full.dX - (a.dX + b.dX)) > p_.ep || std::fabs(full.dY - (a.dY + b.dY)) > p_.ep) {
       // Accept the two half steps (one point) and keep dt/2 for the rest of the run.
       robot_.move(a.dX, a.dY);
       robot_.move(b.dX, b.dY);
       u_ = b.u;
+      trig_ = b.t;
       const double dt_used = h_;
       h_ = hh;
       r_.steps += 2;
@@ -200,7 +210,7 @@ void PlannerRun::arnold_step() {
       return;
     }
   }
-  arnold_step_done(full.u, full.dX, full.dY);
+  arnold_step_done(full.u, full.t, full.dX, full.dY);
 }
 
 // ----------------------------------------------------- Logistic map only

@@ -40,7 +40,7 @@ class PlannerRun {
   void finish();
 
   // The scalar reference path's step, exposed for the lane driver's tests.
-  bool arnold_step_done(const Vec3<double>& u, double dX, double dY);
+  bool arnold_step_done(const Vec3<double>& u, const Trig3<double>& t, double dX, double dY);
 
   // Single mechanisms, public so tests can drive them on hand-made cases.
   // Algorithm 2: try zones in order until one is reached.
@@ -78,6 +78,10 @@ class PlannerRun {
   double budget_;
   ArnoldCoeffs<double> k_;
   Vec3<double> u_;
+  // Trig of u_, carried by rk4_step. u_ changes by RK4 steps alone (not by
+  // switching, zoning or transits); full sincos at the start and at every
+  // segment's start (a pure function of the run, like its segments).
+  Trig3<double> trig_;
   int ds_;
   double h_;
   double t_ = 0.0, t_last_new_ = 0.0;

@@ -1,7 +1,9 @@
 // Kernels: the numerics of SPEC sections 1 and 2 (original Arnold planner).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <random>
 #include <set>
@@ -97,6 +99,8 @@ double max_shift_error() {
 }
 }  // namespace
 
+TEST(SincosShift, CarryFormIsExactToRoundingUpToItsBound) { EXPECT_LT(max_shift_error<ShiftForm::carry>(), 3.5e-16); }
+
 TEST(SincosShift, TinyFormIsExactToRoundingUpToItsBound) { EXPECT_LT(max_shift_error<ShiftForm::tiny>(), 3.5e-16); }
 
 TEST(SincosShift, ShortFormIsExactToRoundingUpToItsBound) { EXPECT_LT(max_shift_error<ShiftForm::short_>(), 3.5e-16); }
@@ -107,7 +111,7 @@ TEST(SincosShift, StageShiftsStayWithinTheirFormsAtTheModeLimit) {
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi), coeff(-2.0, 2.0);
   const auto norm = [](const Vec3<double>& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); };
-  double worst_tiny = 0, worst_short = 0;
+  double worst_tiny = 0, worst_short = 0, worst_carry = 0;
   for (int i = 0; i < 200000; ++i) {
     const double A = coeff(rng), B = coeff(rng), C = coeff(rng);
     const double M = std::max({std::fabs(A) + std::fabs(C), std::fabs(B) + std::fabs(A), std::fabs(C) + std::fabs(B)});
@@ -117,12 +121,17 @@ TEST(SincosShift, StageShiftsStayWithinTheirFormsAtTheModeLimit) {
     const ArnoldCoeffs<double> kh{0.5 * h * A, 0.5 * h * B, 0.5 * h * C};
     const Vec3<double> u{angle(rng), angle(rng), angle(rng)};
     const Vec3<double> K1 = arnold_rhs(u, kh), K2 = arnold_rhs(u + K1, kh), K3 = arnold_rhs(u + K2, kh);
+    const Vec3<double> K4 = arnold_rhs(u + K3 + K3, kh);
+    const Vec3<double> d = K1 + K2 + K2 - K3 - K3 - K3 - K3 + K4;  // 3 x the carry shift
     worst_short = std::max({worst_short, norm(K1), norm(K3 + K3 - K2)});
     worst_tiny = std::max(worst_tiny, norm(K2 - K1));
+    worst_carry = std::max(worst_carry, norm(d) / 3);
   }
   EXPECT_LE(worst_tiny, shift_bound(ShiftForm::tiny));
   EXPECT_LE(worst_short, shift_bound(ShiftForm::short_));
+  EXPECT_LE(worst_carry, shift_bound(ShiftForm::carry));  // (7 L^3 + 2 L^4) / 3 at L = 0.1
   EXPECT_GT(worst_tiny, 0.25 * shift_bound(ShiftForm::tiny));  // not loose by orders (measured 0.0035)
+  EXPECT_GT(worst_carry, 0.1 * shift_bound(ShiftForm::carry));  // measured 0.00026
 }
 
 TEST(SincosShift, ModeFollowsTheBoundOnEveryShift) {
@@ -142,6 +151,53 @@ TEST(Rk4Step, SmallShiftAndFullModesAgreeToRounding) {
     EXPECT_NEAR(a.u.z, b.u.z, 1e-15);
     EXPECT_NEAR(a.dX, b.dX, 1e-16);
     EXPECT_NEAR(a.dY, b.dY, 1e-16);
+  }
+}
+
+TEST(Rk4Step, CarriedTrigIsTheNewStatesToRoundingAndExactOutsideSmallShiftMode) {
+  const ArnoldCoeffs<double> k{0.5, 0.25, 0.25};
+  for (const Vec3<double> u : {Vec3<double>{0, 1, 0}, Vec3<double>{3.1, -2.9, 1.5}, Vec3<double>{-1.2, 0.4, 3.14}}) {
+    const auto a = rk4_step<double>(u, k, heading_select(3), 0.1, 0.1, true);
+    const Trig3<double> t = trig3(a.u);
+    for (auto m : {&Trig3<double>::sx, &Trig3<double>::cx, &Trig3<double>::sy, &Trig3<double>::cy,
+                   &Trig3<double>::sz, &Trig3<double>::cz})
+      EXPECT_NEAR(a.t.*m, t.*m, 5e-16);
+    const auto b = rk4_step<double>(u, k, heading_select(3), 0.5, 0.5, false);  // full sincos of the new u
+    const Trig3<double> tb = trig3(b.u);
+    EXPECT_TRUE(b.t.sx == tb.sx && b.t.cx == tb.cx && b.t.sy == tb.sy && b.t.cy == tb.cy && b.t.sz == tb.sz &&
+                b.t.cz == tb.cz);
+  }
+}
+
+namespace {
+// Largest |sin(state) - carried sine| (and cosine) and |s^2 + c^2 - 1| over
+// n small-shift steps from the run-start trig, against libm on the state.
+std::array<double, 2> carried_trig_drift(const ArnoldCoeffs<double>& k, Vec3<double> u, long n) {
+  Trig3<double> t = trig3(u);
+  double angle = 0, norm = 0;
+  const auto check = [&](double x, double s, double c) {
+    angle = std::max({angle, std::fabs(std::sin(x) - s), std::fabs(std::cos(x) - c)});
+    norm = std::max(norm, std::fabs(std::fma(s, s, c * c) - 1.0));
+  };
+  for (long i = 0; i < n; ++i) {
+    const auto st = rk4_step(u, t, k, heading_select(3), 0.1, 0.1);
+    u = st.u;
+    t = st.t;
+    check(u.x, t.sx, t.cx);
+    check(u.y, t.sy, t.cy);
+    check(u.z, t.sz, t.cz);
+  }
+  return {angle, norm};
+}
+}  // namespace
+
+TEST(Rk4Step, CarriedTrigDriftsByRoundingOnlyOverAMillionSteps) {
+  // The paper's (0.5, 0.25, 0.25) and Fig. 6's far corner, h = 0.1.
+  for (const ArnoldCoeffs<double> k : {ArnoldCoeffs<double>{0.5, 0.25, 0.25}, ArnoldCoeffs<double>{0.65, 0.8, 0.4}}) {
+    const auto [angle, norm] = carried_trig_drift(k, {0, 1, 0}, 1000000);
+    std::cout << "drift " << k.A << "," << k.B << "," << k.C << ": trig " << angle << ", norm " << norm << "\n";
+    EXPECT_LT(angle, 1e-11);
+    EXPECT_LT(norm, 1e-11);
   }
 }
 

@@ -34,14 +34,16 @@ void BM_sincos_glibc(benchmark::State& state) {
 }
 BENCHMARK(BM_sincos_glibc);
 
-// One RK4 step of the Arnold + robot system (12 sincos).
+// One RK4 step of the Arnold + robot system (trig carried, as in a run).
 void BM_rk4_step_scalar(benchmark::State& state) {
   const ArnoldCoeffs<double> k{0.5, 0.25, 0.25};
   Vec3<double> u{0, 1, 0};
+  Trig3<double> t = trig3(u);
   double X = 0;
   for (auto _ : state) {
-    const auto st = rk4_step(u, k, heading_select(3), 0.1, 0.1);
+    const auto st = rk4_step(u, t, k, heading_select(3), 0.1, 0.1);
     u = st.u;
+    t = st.t;
     X += st.dX;
     benchmark::DoNotOptimize(X);
   }
@@ -88,6 +90,8 @@ void BM_lane_kernel(benchmark::State& state) {
   a.lanes = lanes;
   for (int l = 0; l < lanes; ++l) {
     a.x[l] = 0.01 * l; a.y[l] = 1.0; a.z[l] = 0.0;
+    a.sx[l] = std::sin(a.x[l]); a.cx[l] = std::cos(a.x[l]); a.sy[l] = std::sin(1.0); a.cy[l] = std::cos(1.0);
+    a.sz[l] = 0.0; a.cz[l] = 1.0;
     a.A[l] = 0.5; a.B[l] = 0.25; a.C[l] = 0.25; a.h[l] = 0.1; a.h_pos[l] = 0.1; a.ds[l] = 3; a.small[l] = 1;
     a.X[l] = a.Y[l] = 25; a.t[l] = 0; a.fh[l] = 0.1; a.budget[l] = 1e300; a.stuck_time[l] = 1e300;
     a.t_last_new[l] = 0; a.seg_step[l] = 0; a.niter[l] = 1e300; a.steps[l] = 0;
