@@ -174,6 +174,9 @@ Environment parse_text(const std::string& text, const std::string& path, double 
     }
     if (!(spec.min_side > 0 && spec.max_side >= spec.min_side))
       fail(path, "clutter needs 0 < min_side <= max_side");
+    if (!(spec.max_side + 2 * spec.gap < std::min(env.lx, env.ly)))
+      fail(path, "clutter.max_side + 2 gap = " + format_number(spec.max_side + 2 * spec.gap) +
+                     " m does not fit in the map (" + format_number(env.lx) + " x " + format_number(env.ly) + " m)");
     if (clutter_seed) spec.seed = *clutter_seed;
     const auto start = env.start.value_or(std::pair{0.5, 0.5});
     for (const Rect& r : generate_clutter(env.lx, env.ly, spec, start.first, start.second))

@@ -15,7 +15,7 @@ std::vector<Rect> generate_clutter(double lx, double ly, const ClutterSpec& spec
     const double side = spec.min_side + (spec.max_side - spec.min_side) * uniform01(state);
     const double x = g + (lx - side - 2 * g) * uniform01(state);
     const double y = g + (ly - side - 2 * g) * uniform01(state);
-    if (x < g || y < g) continue;  // map too small for this side
+    if (x < g || y < g || x + side > lx - g || y + side > ly - g) continue;  // map too small for this side
     const Rect r{x, y, x + side, y + side};
     const Rect grown{r.x0 - g, r.y0 - g, r.x1 + g, r.y1 + g};
     bool clear = !grown.contains(start_x, start_y);

@@ -30,6 +30,13 @@ double json_number(const std::string& json, const std::string& key) {
   return std::stod(m[1]);
 }
 
+// Cheap runs (a 6 m map, SR 2 m): about two thirds reach 90% in well under
+// a minute of robot time, the rest time out; a_values x b_values runs.
+std::string cheap_sweep(int a_values, int b_values) {
+  return "[fixed]\nsize = 6\nsr = 2\n[axes]\nA = { start = 0.3, stop = 0.7, num = " + std::to_string(a_values) +
+         " }\nB = { start = 0.1, stop = 0.8, num = " + std::to_string(b_values) + " }\n";
+}
+
 const char* small_sweep = R"(
 [sweep]
 name = "cli-small"
@@ -147,34 +154,32 @@ TEST(CliRun, TraceWritesTheTrajectoryAsCsv) {
 
 namespace {
 
-// 1,200 runs of the demo's map: a few seconds in 100-run batches.
-const char* long_sweep = R"(
-[fixed]
-size = 50
-sr = 4
-start = [0.5, 0.5]
-max_time = 10000
-[axes]
-A = { start = 0.35, stop = 0.65, num = 20 }
-B = { start = 0.1, stop = 0.8, num = 20 }
-C = [0.2, 0.3, 0.4]
-)";
+// 12,000 cheap runs: about a second on one thread, long enough to interrupt
+// between its batches.
+const std::string long_sweep = cheap_sweep(24, 500);
+constexpr std::int64_t long_sweep_runs = 12000;
 
-// Rows equal in every column but wall time (which is no part of a run's result).
+// Rows equal in every column but wall time (which is no part of a run's
+// result). Integers are exact as doubles (< 2^53).
 void expect_same_results(const std::string& a, const std::string& b) {
-  for (const chaosweep::Column& c : chaosweep::result_columns()) {
-    if (!c.deterministic) continue;
-    if (c.type == chaosweep::Column::Type::f64) {
-      const auto x = read_f64_column(a, c.name), y = read_f64_column(b, c.name);
-      ASSERT_EQ(x.size(), y.size()) << c.name;
-      for (std::size_t i = 0; i < x.size(); ++i)
-        ASSERT_TRUE(x[i] == y[i] || (std::isnan(x[i]) && std::isnan(y[i]))) << c.name << " row " << i;
-    } else if (c.type == chaosweep::Column::Type::i64) {
-      ASSERT_EQ(read_i64_column(a, c.name), read_i64_column(b, c.name)) << c.name;
-    } else {
-      ASSERT_EQ(read_text_column(a, c.name), read_text_column(b, c.name)) << c.name;
-    }
+  const chaosweep::StoredColumns x = chaosweep::read_all_columns(a), y = chaosweep::read_all_columns(b);
+  ASSERT_EQ(x.rows, y.rows);
+  const auto deterministic = [](const std::string& name) {
+    const chaosweep::Column* c = chaosweep::find_column(name);
+    return c && c->deterministic;
+  };
+  ASSERT_EQ(x.numeric.size(), y.numeric.size());
+  for (std::size_t k = 0; k < x.numeric.size(); ++k) {
+    const auto& [name, u] = x.numeric[k];
+    ASSERT_EQ(name, y.numeric[k].first);
+    if (!deterministic(name)) continue;
+    const auto& v = y.numeric[k].second;
+    for (std::size_t i = 0; i < u.size(); ++i)
+      ASSERT_TRUE(u[i] == v[i] || (std::isnan(u[i]) && std::isnan(v[i]))) << name << " row " << i;
   }
+  ASSERT_EQ(x.text.size(), y.text.size());
+  for (std::size_t k = 0; k < x.text.size(); ++k)
+    if (deterministic(x.text[k].first)) ASSERT_EQ(x.text[k].second, y.text[k].second) << x.text[k].first;
 }
 
 // Waits until `partial` holds at least `rows` rows (read between the
@@ -199,9 +204,9 @@ bool wait_for_rows(const std::string& partial, std::int64_t rows, int pid) {
 TEST(CliSweep, KillNineThenResumeGivesTheUninterruptedFile) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), long_sweep);
-  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o ";
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 1000 -q -o ";
   const int pid = chaosweep::test::start_chaosweep("sweep " + args + tmp.file("r.h5"));
-  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 200, pid)) << "the sweep wrote no batches";
+  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 2000, pid)) << "the sweep wrote no batches";
   kill(pid, SIGKILL);  // right after a batch: the next write is a batch away
   EXPECT_EQ(chaosweep::test::wait_exit(pid), 128 + SIGKILL);
   EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5")));
@@ -213,7 +218,7 @@ TEST(CliSweep, KillNineThenResumeGivesTheUninterruptedFile) {
   const auto whole = run_chaosweep("sweep " + args + tmp.file("whole.h5"));
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
   expect_same_results(tmp.file("r.h5"), tmp.file("whole.h5"));
-  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), long_sweep_runs);
 }
 
 namespace {
@@ -222,18 +227,18 @@ namespace {
 void expect_signal_stops_cleanly_and_resume_completes(int sig) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), long_sweep);
-  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o " + tmp.file("r.h5");
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 1000 -q -o " + tmp.file("r.h5");
   const int pid = chaosweep::test::start_chaosweep("sweep " + args);
-  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 100, pid));
+  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 1000, pid));
   kill(pid, sig);
   EXPECT_EQ(chaosweep::test::wait_exit(pid), 128 + sig);
   const std::int64_t kept = chaosweep::count_rows(tmp.file("r.h5.partial"));
-  EXPECT_GE(kept, 100);
-  EXPECT_LT(kept, 1200);
+  EXPECT_GE(kept, 1000);
+  EXPECT_LT(kept, long_sweep_runs);
   EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5.lock")));
   const auto resumed = run_chaosweep("sweep " + args + " --resume");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), long_sweep_runs);
   const auto done = run_chaosweep("sweep " + args + " --resume");  // idempotent: nothing left to do
   EXPECT_EQ(done.exit_code, 0);
 }
@@ -246,16 +251,16 @@ TEST(CliSweep, SigtermStopsCleanlyAndResumeCompletes) { expect_signal_stops_clea
 TEST(CliSweep, SecondSweepOnTheSameOutputIsRefused) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), long_sweep);
-  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 100 -q -o " + tmp.file("r.h5");
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 1000 -q -o " + tmp.file("r.h5");
   const int pid = chaosweep::test::start_chaosweep("sweep " + args);
-  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 100, pid));
+  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 1000, pid));
   for (const char* extra : {" --resume", " --force"}) {
     const auto second = run_chaosweep("sweep " + args + extra);
     EXPECT_EQ(second.exit_code, 2) << extra;
     EXPECT_NE(second.err.find("is being written by process " + std::to_string(pid)), std::string::npos) << second.err;
   }
   EXPECT_EQ(chaosweep::test::wait_exit(pid), 0);  // the first sweep never noticed
-  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 1200);
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), long_sweep_runs);
   EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5.lock")));  // removed by its holder
   const auto whole = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("whole.h5"));
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
@@ -283,7 +288,7 @@ TEST(CliSweep, FileSizeLimitStopsWithAResumableFile) {
   EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5")));
   const std::int64_t kept = chaosweep::count_rows(tmp.file("r.h5.partial"));
   EXPECT_GE(kept, 100);
-  EXPECT_LT(kept, 1200);
+  EXPECT_LT(kept, long_sweep_runs);
   EXPECT_EQ(kept % 100, 0);
   const auto resumed = run_chaosweep("sweep " + args + " --resume");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
@@ -325,7 +330,7 @@ TEST(CliSweep, FullFilesystemStopsWithAResumableFile) {
   EXPECT_NE(r.err.find("make room, then continue with --resume"), std::string::npos) << r.err;
   const std::int64_t kept = chaosweep::count_rows(disk + "/r.h5.partial");
   EXPECT_GE(kept, 100);
-  EXPECT_LT(kept, 1200);
+  EXPECT_LT(kept, long_sweep_runs);
   ASSERT_TRUE(mount_tmpfs(disk, 16 << 20, true));  // room again
   const auto resumed = run_chaosweep("sweep " + args + " --resume");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
@@ -515,13 +520,6 @@ TEST(CliPlan, ShowsRunsAxesAndAWorkBound) {
 // ------------------------------------------------------------ bounded memory
 
 namespace {
-// Cheap runs (a 6 m map, SR 2 m): about two thirds reach 90% in well under
-// a minute of robot time, the rest time out; `num` B values per A.
-std::string cheap_sweep(int a_values, int b_values) {
-  return "[fixed]\nsize = 6\nsr = 2\n[axes]\nA = { start = 0.3, stop = 0.7, num = " + std::to_string(a_values) +
-         " }\nB = { start = 0.1, stop = 0.8, num = " + std::to_string(b_values) + " }\n";
-}
-
 // Peak RSS (KiB) of a whole sweep of `spec`.
 long sweep_peak_rss(const TempDir& tmp, const std::string& name, const std::string& spec) {
   write_file(tmp.file(name + ".toml"), spec);

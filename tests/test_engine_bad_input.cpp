@@ -245,6 +245,25 @@ TEST(Environment, AnObstacleOutsideTheMapIsRefusedNamingItAndTheMapBounds) {
   EXPECT_EQ(env_error("units = \"m\"\nsize = 10\nobstacles = [{ x = 9, y = 0, w = 1, h = 10 }]\n"), "");
 }
 
+TEST(Environment, ClutterThatCannotFitInTheMapIsRefusedAndGeneratedObstaclesStayInside) {
+  // A side (plus its gaps) as large as the map: no obstacle could be placed.
+  const std::string e = env_error("clutter = { seed = 1, occupancy = 0.1, min_side = 0.5, max_side = 0.99 }\n");
+  EXPECT_TRUE(has(e, "clutter.max_side + 2 gap")) << e;
+  EXPECT_TRUE(has(e, "= 10.3 m does not fit in the map (10 x 10 m)")) << e;
+  // Sides up to most of the map: every generated obstacle lies inside it.
+  for (std::uint64_t seed = 0; seed < 50; ++seed) {
+    const Environment env = parse_environment(
+        "clutter = { seed = " + std::to_string(seed) + ", occupancy = 0.3, min_side = 0.1, max_side = 0.9, gap = 0.02 }\n",
+        "env.toml", 10, 10);
+    for (const Rect& r : env.obstacles) {
+      EXPECT_GE(r.x0, 0.0);
+      EXPECT_GE(r.y0, 0.0);
+      EXPECT_LE(r.x1, 10.0);
+      EXPECT_LE(r.y1, 10.0);
+    }
+  }
+}
+
 TEST(Environment, OverlappingObstaclesAreAcceptedAsTheirUnion) {
   // Two overlapping squares, and the same region cut into three disjoint rectangles.
   const Environment overlap = parse_environment(
