@@ -479,7 +479,7 @@ void parse_axis_sections(const toml::table& t, const std::string& at, const std:
       const std::string key(k.str());
       const std::string where = at + "axes." + key;
       claim(used, key, {origin + "axes." + key, true, in_part}, where);
-      Axis axis{"axis", {key}, {}};
+      Axis axis{"axis", {key}, {}, {}};
       for (SpecValue& v : axis_values(node, where)) axis.values.push_back({{key, std::move(v)}});
       check_axis(axis, base, where);
       ordered.emplace_back(node.source().begin.line, std::move(axis));
@@ -490,7 +490,7 @@ void parse_axis_sections(const toml::table& t, const std::string& at, const std:
       const toml::table& zt = *zips->get(z)->as_table();
       const std::string zname = "zip[" + std::to_string(z) + "]";
       const std::string where = at + zname;
-      Axis axis{"zip", {}, {}};
+      Axis axis{"zip", {}, {}, {}};
       std::vector<std::pair<std::uint32_t, std::pair<std::string, std::vector<SpecValue>>>> cols;
       for (auto&& [k, node] : zt) {
         const std::string key(k.str());
@@ -515,7 +515,7 @@ void parse_axis_sections(const toml::table& t, const std::string& at, const std:
   }
   // [[case]] tables: one axis whose positions are the cases, in file order.
   if (const toml::array* cases = t["case"].as_array()) {
-    Axis axis{"case", {}, {}};
+    Axis axis{"case", {}, {}, {}};
     std::set<std::string> keys;
     for (std::size_t i = 0; i < cases->size(); ++i) {
       const toml::table& ct = *cases->get(i)->as_table();
@@ -695,7 +695,11 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
     }
     if (count < 1 || count > 100000000) fail(where + ".count", "must be in [1, 1e8]");
     spec.repeat = true;
-    Axis axis{"repeat", {"seed"}, std::vector<Settings>(std::size_t(count))};
+    // Its positions set nothing themselves (the seed comes from the run_id):
+    // a sampler of no dimensions, so count costs no memory.
+    auto positions = std::make_shared<Sampler>();
+    positions->n = count;
+    Axis axis{"repeat", {"seed"}, {}, std::move(positions)};
     ordered.emplace_back(t->source().begin.line, std::move(axis));
   }
   for (Axis& a : in_file_order(std::move(ordered))) spec.axes.push_back(std::move(a));

@@ -37,6 +37,7 @@ using Settings = std::vector<std::pair<std::string, SpecValue>>;
 
 // A [sample] axis: n points computed on demand from the seed, never stored,
 // so a sample of millions of points costs no memory until its runs run.
+// (With no dimensions it is [repeat]'s n positions, which set nothing.)
 struct Sampler {
   struct Dim {
     std::string key;
@@ -53,7 +54,7 @@ struct Sampler {
 // An axis: one key (a plain axis), several advancing together (a [[zip]]
 // group), a list of cases ([[case]] tables, one position each), or a sample.
 struct Axis {
-  std::string kind = "axis";      // "axis", "zip", "case" or "sample"
+  std::string kind = "axis";      // "axis", "zip", "case", "sample" or "repeat"
   std::vector<std::string> keys;  // every key the axis sets
   std::vector<Settings> values;   // values[i]: the settings of position i (not for samples)
   std::shared_ptr<const Sampler> sampler;  // samples: positions computed, not stored

@@ -179,7 +179,9 @@ void expect_same_results(const std::string& a, const std::string& b) {
   }
   ASSERT_EQ(x.text.size(), y.text.size());
   for (std::size_t k = 0; k < x.text.size(); ++k)
-    if (deterministic(x.text[k].first)) ASSERT_EQ(x.text[k].second, y.text[k].second) << x.text[k].first;
+    if (deterministic(x.text[k].first)) {
+      ASSERT_EQ(x.text[k].second, y.text[k].second) << x.text[k].first;
+    }
 }
 
 // Waits until `partial` holds at least `rows` rows (read between the

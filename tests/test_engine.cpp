@@ -195,6 +195,11 @@ TEST(SweepSpec, TenMillionRunSpecIsExpandedLazily) {
   for (std::int64_t i = 0; i < 100000; ++i) low += s.run(10000000 + i).params.A < 0.3 + 0.4 * 0.01;
   EXPECT_NEAR(low, 1000, 150);
   EXPECT_EQ(s.environment_variants().size(), 2u);  // one map per part: preloading visits 2 runs, not 2e7
+  // [repeat] of 10^7: no per-repeat storage either.
+  const SweepSpec r = parse_sweep_spec("[fixed]\nA = 0.5\n[repeat]\ncount = 10000000\nseed = 1\n", "x");
+  ASSERT_EQ(r.size(), 10000000);
+  EXPECT_EQ(r.run(9999999).params.seed, repeat_seed(1, 9999999));
+  EXPECT_EQ(r.axes[0].values.size(), 0u);
 }
 
 TEST(SweepSummary, MedianIsExactThenWithinItsStatedPrecisionAndMemoryIsBounded) {
