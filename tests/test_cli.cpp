@@ -341,18 +341,26 @@ TEST(CliSweep, FullFilesystemStopsWithAResumableFile) {
   expect_same_results(disk + "/r.h5", tmp.file("whole.h5"));
 }
 
+namespace {
+// `args` must not replace the existing file `kept`: exit 2 naming it and
+// --force, the file untouched; with --force it runs and replaces it.
+void expect_refused_then_forced(const std::string& args, const std::string& kept) {
+  write_file(kept, "keep me");
+  const auto refused = run_chaosweep(args);
+  EXPECT_EQ(refused.exit_code, 2) << args;
+  EXPECT_NE(refused.err.find(kept + " exists; pass --force"), std::string::npos) << refused.err;
+  EXPECT_EQ(chaosweep::test::read_file(kept), "keep me") << args;
+  const auto forced = run_chaosweep(args + " --force");
+  EXPECT_EQ(forced.exit_code, 0) << args << forced.err;
+  EXPECT_NE(chaosweep::test::read_file(kept), "keep me") << args;
+}
+}  // namespace
+
 TEST(CliSweep, ExistingOutputIsRefusedWithoutForce) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), small_sweep);
-  const std::string args = "sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("r.h5");
-  write_file(tmp.file("r.h5"), "hours of someone's work");
-  const auto refused = run_chaosweep(args);
-  EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_NE(refused.err.find(tmp.file("r.h5") + " exists; pass --force"), std::string::npos) << refused.err;
-  EXPECT_EQ(chaosweep::test::read_file(tmp.file("r.h5")), "hours of someone's work");
+  expect_refused_then_forced("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("r.h5"), tmp.file("r.h5"));
   EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5.partial")));
-  const auto forced = run_chaosweep(args + " --force");
-  ASSERT_EQ(forced.exit_code, 0) << forced.err;
   EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), 18);
 }
 
@@ -373,14 +381,7 @@ TEST(CliMerge, ExistingOutputIsRefusedWithoutForce) {
   write_file(tmp.file("s.toml"), small_sweep);
   const auto shard = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("all.h5"));
   ASSERT_EQ(shard.exit_code, 0) << shard.err;
-  write_file(tmp.file("m.h5"), "keep me");
-  const std::string args = "merge -o " + tmp.file("m.h5") + " " + tmp.file("all.h5");
-  const auto refused = run_chaosweep(args);
-  EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_NE(refused.err.find("exists; pass --force"), std::string::npos) << refused.err;
-  EXPECT_EQ(chaosweep::test::read_file(tmp.file("m.h5")), "keep me");
-  const auto forced = run_chaosweep(args + " --force");
-  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  expect_refused_then_forced("merge -o " + tmp.file("m.h5") + " " + tmp.file("all.h5"), tmp.file("m.h5"));
   EXPECT_EQ(chaosweep::count_rows(tmp.file("m.h5")), 18);
 }
 
@@ -413,14 +414,7 @@ TEST(CliOutputs, TableFigureAndTraceRefuseAnExistingFileWithoutForce) {
       {"figure heatmap " + h5 + " --x A --y B -o " + tmp.file("g.png"), "g.csv"},  // the CSV beside
       {"run --size 12 --max-time 100 --trace " + tmp.file("trace.csv"), "trace.csv"}};
   for (const Case& c : cases) {
-    write_file(tmp.file(c.kept), "keep me");
-    const auto refused = run_chaosweep(c.command);
-    EXPECT_EQ(refused.exit_code, 2) << c.command;
-    EXPECT_NE(refused.err.find(tmp.file(c.kept) + " exists; pass --force"), std::string::npos) << refused.err;
-    EXPECT_EQ(chaosweep::test::read_file(tmp.file(c.kept)), "keep me") << c.command;
-    const auto forced = run_chaosweep(c.command + " --force");
-    EXPECT_EQ(forced.exit_code, 0) << c.command << forced.err;
-    EXPECT_NE(chaosweep::test::read_file(tmp.file(c.kept)), "keep me") << c.command;
+    expect_refused_then_forced(c.command, tmp.file(c.kept));
     std::filesystem::remove(tmp.file(c.kept));
   }
 }

@@ -146,7 +146,7 @@ TEST(CliSweep, EachKindOfBadSpecIsNamedExits2AndWritesNothing) {
 
 TEST(CliSweep, AnEnvironmentThatDoesNotExistIsNamedAndNothingIsWritten) {
   TempDir tmp;
-  for (const std::string env : {std::string("no_such_env"), tmp.file("missing/env.toml")}) {
+  for (const std::string& env : {std::string("no_such_env"), tmp.file("missing/env.toml")}) {
     std::string spec = small_sweep;
     spec.insert(spec.find("size = 12"), "env = \"" + env + "\"\n");
     write_file(tmp.file("s.toml"), spec);
@@ -219,36 +219,6 @@ TEST(CliRun, OverlappingObstaclesAreOneObstacleTheirUnion) {
 
 namespace {
 
-// An HDF5 file that is not a chaosweep result file (see docs/inputs.md):
-// "no-runs" (a dataset /data only), "other-columns" (/runs of two foreign
-// columns) or "not-compound" (/runs of plain integers).
-void write_foreign_file(const std::string& path, const std::string& what) {
-  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  const hsize_t n = 3;
-  hid_t space = H5Screate_simple(1, &n, nullptr);
-  if (what == "other-columns") {
-    struct Row {
-      double a;
-      std::int64_t b;
-    } data[3] = {{1, 2}, {3, 4}, {5, 6}};
-    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(Row));
-    H5Tinsert(t, "a", HOFFSET(Row, a), H5T_NATIVE_DOUBLE);
-    H5Tinsert(t, "b", HOFFSET(Row, b), H5T_NATIVE_INT64);
-    hid_t d = H5Dcreate2(file, "runs", t, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
-    H5Dclose(d);
-    H5Tclose(t);
-  } else {
-    const int data[3] = {1, 2, 3};
-    hid_t d = H5Dcreate2(file, what == "no-runs" ? "data" : "runs", H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT,
-                         H5P_DEFAULT);
-    H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
-    H5Dclose(d);
-  }
-  H5Sclose(space);
-  H5Fclose(file);
-}
-
 // One set of result files for every test below: a whole sweep, its two
 // shards, a shard of another spec, and broken or foreign files.
 class BadResultFiles : public testing::Test {
@@ -268,9 +238,9 @@ class BadResultFiles : public testing::Test {
     const std::string bytes = chaosweep::test::read_file(file("good.h5"));
     write_file(file("truncated.h5"), bytes.substr(0, bytes.size() / 2));
     write_file(file("text.h5"), "run_id,status\n0,ok\n");
-    write_foreign_file(file("no-runs.h5"), "no-runs");
-    write_foreign_file(file("other-columns.h5"), "other-columns");
-    write_foreign_file(file("not-compound.h5"), "not-compound");
+    chaosweep::test::write_foreign_file(file("no-runs.h5"), "no-runs");
+    chaosweep::test::write_foreign_file(file("other-columns.h5"), "other-columns");
+    chaosweep::test::write_foreign_file(file("not-compound.h5"), "not-compound");
   }
   static void TearDownTestSuite() {
     delete dir_;

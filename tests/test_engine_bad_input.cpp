@@ -337,36 +337,6 @@ void write_result_file(const std::string& path, int n) {
   w.finish();
 }
 
-// An HDF5 file that is not a chaosweep result file: `what` is "no-runs" (a
-// dataset /data only), "other-columns" (/runs of two foreign columns) or
-// "not-compound" (/runs of plain integers).
-void write_foreign_file(const std::string& path, const std::string& what) {
-  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  const hsize_t n = 3;
-  hid_t space = H5Screate_simple(1, &n, nullptr);
-  if (what == "other-columns") {
-    struct Row {
-      double a;
-      std::int64_t b;
-    } data[3] = {{1, 2}, {3, 4}, {5, 6}};
-    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(Row));
-    H5Tinsert(t, "a", HOFFSET(Row, a), H5T_NATIVE_DOUBLE);
-    H5Tinsert(t, "b", HOFFSET(Row, b), H5T_NATIVE_INT64);
-    hid_t d = H5Dcreate2(file, "runs", t, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
-    H5Dclose(d);
-    H5Tclose(t);
-  } else {
-    const int data[3] = {1, 2, 3};
-    hid_t d = H5Dcreate2(file, what == "no-runs" ? "data" : "runs", H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT,
-                         H5P_DEFAULT);
-    H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
-    H5Dclose(d);
-  }
-  H5Sclose(space);
-  H5Fclose(file);
-}
-
 void truncate_to_half(const std::string& from, const std::string& to) {
   const std::string bytes = test::read_file(from);
   write_file(to, bytes.substr(0, bytes.size() / 2));
@@ -380,8 +350,8 @@ TEST(H5Store, BrokenAndForeignFilesAreNamedWithoutAnHdf5ErrorDump) {
   ASSERT_EQ(count_rows(tmp.file("good.h5")), 3000);
   truncate_to_half(tmp.file("good.h5"), tmp.file("truncated.h5"));
   write_file(tmp.file("text.h5"), "run_id,status\n0,ok\n");
-  write_foreign_file(tmp.file("no-runs.h5"), "no-runs");
-  write_foreign_file(tmp.file("not-compound.h5"), "not-compound");
+  chaosweep::test::write_foreign_file(tmp.file("no-runs.h5"), "no-runs");
+  chaosweep::test::write_foreign_file(tmp.file("not-compound.h5"), "not-compound");
   struct Case {
     const char* file;
     const char* why;

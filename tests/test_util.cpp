@@ -11,6 +11,8 @@
 #include <sstream>
 #include <unistd.h>
 
+#include <hdf5.h>
+
 namespace chaosweep::test {
 
 namespace fs = std::filesystem;
@@ -79,6 +81,33 @@ Environment square_map(double side, std::vector<Rect> obstacles) {
   env.lx = env.ly = side;
   env.obstacles = std::move(obstacles);
   return env;
+}
+
+void write_foreign_file(const std::string& path, const std::string& what) {
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t n = 3;
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  if (what == "other-columns") {
+    struct Row {
+      double a;
+      std::int64_t b;
+    } data[3] = {{1, 2}, {3, 4}, {5, 6}};
+    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(Row));
+    H5Tinsert(t, "a", HOFFSET(Row, a), H5T_NATIVE_DOUBLE);
+    H5Tinsert(t, "b", HOFFSET(Row, b), H5T_NATIVE_INT64);
+    hid_t d = H5Dcreate2(file, "runs", t, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+    H5Dclose(d);
+    H5Tclose(t);
+  } else {
+    const int data[3] = {1, 2, 3};
+    hid_t d = H5Dcreate2(file, what == "no-runs" ? "data" : "runs", H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT,
+                         H5P_DEFAULT);
+    H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+    H5Dclose(d);
+  }
+  H5Sclose(space);
+  H5Fclose(file);
 }
 
 }  // namespace chaosweep::test

@@ -51,4 +51,9 @@ RunParams small_run(double side = 10.0);
 // A square map with the given obstacles.
 Environment square_map(double side, std::vector<Rect> obstacles = {});
 
+// An HDF5 file that is not a chaosweep result file (docs/inputs.md): `what`
+// is "no-runs" (a dataset /data only), "other-columns" (/runs of two foreign
+// columns) or "not-compound" (/runs of plain integers).
+void write_foreign_file(const std::string& path, const std::string& what);
+
 }  // namespace chaosweep::test
