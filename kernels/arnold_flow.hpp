@@ -117,23 +117,34 @@ inline void sincos_shift(T su, T cu, T d, T& s, T& c) {
   c = fma(cu, cm, fma(-su, sd, cu));
 }
 
+// Trig of base + d by shifting (see sincos_shift), for every lane.
+template <ShiftForm F, class T>
+inline Trig3<T> trig3_shift(const Trig3<T>& base, const Vec3<T>& d) {
+  Trig3<T> t;
+  sincos_shift<F>(base.sx, base.cx, d.x, t.sx, t.cx);
+  sincos_shift<F>(base.sy, base.cy, d.y, t.sy, t.cy);
+  sincos_shift<F>(base.sz, base.cz, d.z, t.sz, t.cz);
+  return t;
+}
+
 // Trig of the stage point p = (base point) + d: by shifting `base` when
 // `small` holds for every lane, by full sincos of p when for none, and lane
 // by lane otherwise.
 template <ShiftForm F, class T, class M>
 inline Trig3<T> trig3_stage(const Trig3<T>& base, const Vec3<T>& d, const Vec3<T>& p, M small) {
-  auto shifted = [&] {
-    Trig3<T> t;
-    sincos_shift<F>(base.sx, base.cx, d.x, t.sx, t.cx);
-    sincos_shift<F>(base.sy, base.cy, d.y, t.sy, t.cy);
-    sincos_shift<F>(base.sz, base.cz, d.z, t.sz, t.cz);
-    return t;
-  };
-  if (lane::all(small)) return shifted();
+  if (lane::all(small)) return trig3_shift<F>(base, d);
   if (lane::none(small)) return trig3(p);
-  const Trig3<T> a = shifted(), b = trig3(p);
+  const Trig3<T> a = trig3_shift<F>(base, d), b = trig3(p);
   return {lane::select(small, a.sx, b.sx), lane::select(small, a.cx, b.cx), lane::select(small, a.sy, b.sy),
           lane::select(small, a.cy, b.cy), lane::select(small, a.sz, b.sz), lane::select(small, a.cz, b.cz)};
+}
+
+// trig3_stage, or trig3_shift alone when the caller knows every lane is in
+// small-shift mode (AllSmall): the same result for such lanes, no branches.
+template <bool AllSmall, ShiftForm F, class T, class M>
+inline Trig3<T> trig3_stage_as(const Trig3<T>& base, const Vec3<T>& d, const Vec3<T>& p, M small) {
+  if constexpr (AllSmall) return trig3_shift<F>(base, d);
+  else return trig3_stage<F>(base, d, p, small);
 }
 
 // Which Arnold coordinate drives the heading (DSindex 1=x, 2=y, 3=z), as lane
@@ -165,41 +176,59 @@ struct Rk4Step {
   T dX, dY;
 };
 
-// h: step of the Arnold system; h_pos: robot distance per step (f * v * h),
-// which is how the scaling factor f enters (SPEC 2, "Scaling factor f").
-// `small`: the lane runs in small-shift mode (see small_shift_mode).
-// t1: the trig of u, carried from the previous step (Rk4Step::t) or trig3(u)
-// at a run's start. In small-shift mode a step takes no full sincos at all:
-// the carried trig drifts from u's by rounding only (< 7e-12 over 10^6
-// steps, tests/test_kernels.cpp; a run re-takes it at every segment start),
-// far below RK4's local error (~1e-9 per step at h = 0.1).
+// One RK4 step split into its stages, so a kernel may interleave the stages
+// of independent vectors (rk4_step2); rk4_step runs them in order. The
+// operations per lane are the same either way.
 template <class T>
-inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k,
-                           const HeadingSelect<T>& hs, T h, T h_pos, decltype(T() < T()) small) {
-  using lane::fma;
-  const T half = h * lane::splat<T>(0.5);
-  const T two = lane::splat<T>(2.0);
-  // The stage derivatives are taken in units of h/2 (K = (h/2) k, from the
-  // coefficients scaled once), so stages 2, 3 and 4 sit at u + K1, u + K2 and
-  // u + 2 K3 (doubling is exact) with no further products. Each stage's trig is reduced
-  // at once to what later stages need (its K and heading), and stages 1+4 and
-  // 2+3 are summed as they come: this keeps few vectors live. The operations
-  // are the same in every width.
-  const ArnoldCoeffs<T> kh{half * k.A, half * k.B, half * k.C};
-  const Vec3<T> K1 = arnold_rhs(t1, kh);
-  const T c1 = heading_cos(t1, hs), s1 = heading_sin(t1, hs);
-  const Trig3<T> t2 = trig3_stage<ShiftForm::short_>(t1, K1, u + K1, small);
-  const Vec3<T> K2 = arnold_rhs(t2, kh);
-  const T c2 = heading_cos(t2, hs), s2 = heading_sin(t2, hs);
-  const Trig3<T> t3 = trig3_stage<ShiftForm::tiny>(t2, K2 - K1, u + K2, small);
-  const Vec3<T> K3 = arnold_rhs(t3, kh);
-  const T c23 = c2 + heading_cos(t3, hs), s23 = s2 + heading_sin(t3, hs);
-  const Vec3<T> K23 = K2 + K3;
-  const Vec3<T> K33 = K3 + K3;
-  const Trig3<T> t4 = trig3_stage<ShiftForm::short_>(t3, K33 - K2, u + K33, small);
-  const Vec3<T> K4 = arnold_rhs(t4, kh);
-  const T c14 = c1 + heading_cos(t4, hs), s14 = s1 + heading_sin(t4, hs);
+struct Rk4Work {
+  Vec3<T> u;
+  ArnoldCoeffs<T> kh;
+  HeadingSelect<T> hs;
+  decltype(T() < T()) small;
+  Trig3<T> t;  // the current stage's trig
+  Vec3<T> K1, K2, K33;
+  T c1, s1, c2, s2;
+};
 
+template <bool AllSmall, class T>
+inline void rk4_stage1(Rk4Work<T>& w, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, T h) {
+  const T half = h * lane::splat<T>(0.5);
+  w.kh = {half * k.A, half * k.B, half * k.C};
+  w.K1 = arnold_rhs(t1, w.kh);
+  w.c1 = heading_cos(t1, w.hs);
+  w.s1 = heading_sin(t1, w.hs);
+  w.t = trig3_stage_as<AllSmall, ShiftForm::short_>(t1, w.K1, w.u + w.K1, w.small);
+}
+
+template <bool AllSmall, class T>
+inline void rk4_stage2(Rk4Work<T>& w) {
+  w.K2 = arnold_rhs(w.t, w.kh);
+  w.c2 = heading_cos(w.t, w.hs);
+  w.s2 = heading_sin(w.t, w.hs);
+  w.t = trig3_stage_as<AllSmall, ShiftForm::tiny>(w.t, w.K2 - w.K1, w.u + w.K2, w.small);
+}
+
+template <bool AllSmall, class T>
+inline void rk4_stage3(Rk4Work<T>& w) {
+  const Vec3<T> K3 = arnold_rhs(w.t, w.kh);
+  w.c2 = w.c2 + heading_cos(w.t, w.hs);  // c23
+  w.s2 = w.s2 + heading_sin(w.t, w.hs);  // s23
+  const Vec3<T> K23 = w.K2 + K3;
+  w.K33 = K3 + K3;
+  w.t = trig3_stage_as<AllSmall, ShiftForm::short_>(w.t, w.K33 - w.K2, w.u + w.K33, w.small);
+  w.K2 = K23;
+}
+
+template <bool AllSmall, class T>
+inline Rk4Step<T> rk4_stage4(Rk4Work<T>& w, T h_pos) {
+  using lane::fma;
+  const T two = lane::splat<T>(2.0);
+  const Vec3<T> K4 = arnold_rhs(w.t, w.kh);
+  const T c14 = w.c1 + heading_cos(w.t, w.hs), s14 = w.s1 + heading_sin(w.t, w.hs);
+  const Vec3<T>& K1 = w.K1;
+  const Vec3<T>& K23 = w.K2;
+  const Vec3<T>& K33 = w.K33;
+  const Vec3<T>& u = w.u;
   // u + h/6 (k1 + 2 k2 + 2 k3 + k4) = u + (K1 + 2 K2 + 2 K3 + K4) / 3; the
   // same sum less 2 K3 is the shift from stage 4 to it (wrapping is by 2 pi).
   const T third = lane::splat<T>(1.0 / 3.0);
@@ -209,11 +238,56 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoe
   out.u.y = wrap_pi(fma(third, S.y, u.y));
   out.u.z = wrap_pi(fma(third, S.z, u.z));
   const Vec3<T> d{fma(third, S.x, -K33.x), fma(third, S.y, -K33.y), fma(third, S.z, -K33.z)};
-  out.t = trig3_stage<ShiftForm::carry>(t4, d, out.u, small);
+  out.t = trig3_stage_as<AllSmall, ShiftForm::carry>(w.t, d, out.u, w.small);
   const T pos6 = h_pos * lane::splat<T>(1.0 / 6.0);
-  out.dX = pos6 * fma(two, c23, c14);
-  out.dY = pos6 * fma(two, s23, s14);
+  out.dX = pos6 * fma(two, w.c2, c14);
+  out.dY = pos6 * fma(two, w.s2, s14);
   return out;
+}
+
+// h: step of the Arnold system; h_pos: robot distance per step (f * v * h),
+// which is how the scaling factor f enters (SPEC 2, "Scaling factor f").
+// `small`: the lane runs in small-shift mode (see small_shift_mode).
+// t1: the trig of u, carried from the previous step (Rk4Step::t) or trig3(u)
+// at a run's start. In small-shift mode a step takes no full sincos at all:
+// the carried trig drifts from u's by rounding only (< 7e-12 over 10^6
+// steps, tests/test_kernels.cpp; a run re-takes it at every segment start),
+// far below RK4's local error (~1e-9 per step at h = 0.1).
+//   The stage derivatives are taken in units of h/2 (K = (h/2) k, from the
+// coefficients scaled once), so stages 2, 3 and 4 sit at u + K1, u + K2 and
+// u + 2 K3 (doubling is exact) with no further products. Each stage's trig is
+// reduced at once to what later stages need (its K and heading), and stages
+// 1+4 and 2+3 are summed as they come: this keeps few vectors live. The
+// operations are the same in every width.
+template <class T>
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k,
+                           const HeadingSelect<T>& hs, T h, T h_pos, decltype(T() < T()) small) {
+  Rk4Work<T> w;
+  w.u = u;
+  w.hs = hs;
+  w.small = small;
+  rk4_stage1<false>(w, t1, k, h);
+  rk4_stage2<false>(w);
+  rk4_stage3<false>(w);
+  return rk4_stage4<false>(w, h_pos);
+}
+
+// Two independent steps (w[i] holding u, hs and small, as rk4_step sets
+// them), stage by stage in turn, so their dependency chains overlap. Each
+// lane's operations are rk4_step's. AllSmall: every lane of both is in
+// small-shift mode.
+template <bool AllSmall, class T>
+inline void rk4_step2(Rk4Work<T>& a, Rk4Work<T>& b, const Trig3<T>& ta, const Trig3<T>& tb,
+                      const ArnoldCoeffs<T>& ka, const ArnoldCoeffs<T>& kb, T ha, T hb, T hpa, T hpb,
+                      Rk4Step<T>& oa, Rk4Step<T>& ob) {
+  rk4_stage1<AllSmall>(a, ta, ka, ha);
+  rk4_stage1<AllSmall>(b, tb, kb, hb);
+  rk4_stage2<AllSmall>(a);
+  rk4_stage2<AllSmall>(b);
+  rk4_stage3<AllSmall>(a);
+  rk4_stage3<AllSmall>(b);
+  oa = rk4_stage4<AllSmall>(a, hpa);
+  ob = rk4_stage4<AllSmall>(b, hpb);
 }
 
 // A step from u alone (no carried trig), as at a run's start.

@@ -61,7 +61,8 @@ inline unsigned fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
 
 // flatten: the step and the fast path inline into one loop body, so the
 // vectors stay in registers instead of passing through memory.
-template <class V, int N>
+// Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
+template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   const unsigned all_lanes = (1u << a.lanes) - 1u;
@@ -69,16 +70,40 @@ template <class V, int N>
     unsigned quiet = 0;
     for (int g = 0; g < a.lanes; g += w * N) {
       Rk4Step<V> s[N];
-      for (int k = 0; k < N; ++k) {
-        const int o = g + k * w;
-        const Vec3<V> u{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)};
-        const Trig3<V> t{lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o),
-                         lane_load<V>(a.cy + o), lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)};
-        const ArnoldCoeffs<V> c{lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
-        const V ds = lane_load<V>(a.ds + o);
-        const HeadingSelect<V> hs{ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
-        s[k] = rk4_step(u, t, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o),
-                        lane_load<V>(a.small + o) == lane::splat<V>(1.0));
+      if constexpr (Staged && N == 2) {
+        // The two vectors' steps stage by stage in turn (rk4_step2).
+        Rk4Work<V> wk[2];
+        Trig3<V> t[2];
+        ArnoldCoeffs<V> c[2];
+        V h[2], hp[2];
+        for (int k = 0; k < 2; ++k) {
+          const int o = g + k * w;
+          wk[k].u = {lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)};
+          t[k] = {lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o),
+                  lane_load<V>(a.cy + o), lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)};
+          c[k] = {lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
+          const V ds = lane_load<V>(a.ds + o);
+          wk[k].hs = {ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
+          wk[k].small = lane_load<V>(a.small + o) == lane::splat<V>(1.0);
+          h[k] = lane_load<V>(a.h + o);
+          hp[k] = lane_load<V>(a.h_pos + o);
+        }
+        if (lane::all(wk[0].small & wk[1].small))
+          rk4_step2<true>(wk[0], wk[1], t[0], t[1], c[0], c[1], h[0], h[1], hp[0], hp[1], s[0], s[1]);
+        else
+          rk4_step2<false>(wk[0], wk[1], t[0], t[1], c[0], c[1], h[0], h[1], hp[0], hp[1], s[0], s[1]);
+      } else {
+        for (int k = 0; k < N; ++k) {
+          const int o = g + k * w;
+          const Vec3<V> u{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)};
+          const Trig3<V> t{lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o),
+                           lane_load<V>(a.cy + o), lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)};
+          const ArnoldCoeffs<V> c{lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
+          const V ds = lane_load<V>(a.ds + o);
+          const HeadingSelect<V> hs{ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
+          s[k] = rk4_step(u, t, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o),
+                          lane_load<V>(a.small + o) == lane::splat<V>(1.0));
+        }
       }
       for (int k = 0; k < N; ++k) {
         const int o = g + k * w;
