@@ -59,6 +59,30 @@ inline unsigned fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   return lane::bits(quiet);
 }
 
+// One vector's inputs to a step, from the arrays at lane offset o.
+template <class V>
+struct StepInput {
+  Vec3<V> u;
+  Trig3<V> t;
+  ArnoldCoeffs<V> c;
+  HeadingSelect<V> hs;
+  V h, h_pos;
+  decltype(V() < V()) small;
+};
+
+template <class V>
+inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
+  const V ds = lane_load<V>(a.ds + o);
+  return {{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)},
+          {lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o), lane_load<V>(a.cy + o),
+           lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)},
+          {lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)},
+          {ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)},
+          lane_load<V>(a.h + o),
+          lane_load<V>(a.h_pos + o),
+          lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
+}
+
 // flatten: the step and the fast path inline into one loop body, so the
 // vectors stay in registers instead of passing through memory.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
@@ -72,37 +96,23 @@ template <class V, int N, bool Staged = false>
       Rk4Step<V> s[N];
       if constexpr (Staged && N == 2) {
         // The two vectors' steps stage by stage in turn (rk4_step2).
+        const StepInput<V> in[2] = {load_step_input<V>(a, g), load_step_input<V>(a, g + w)};
         Rk4Work<V> wk[2];
-        Trig3<V> t[2];
-        ArnoldCoeffs<V> c[2];
-        V h[2], hp[2];
         for (int k = 0; k < 2; ++k) {
-          const int o = g + k * w;
-          wk[k].u = {lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)};
-          t[k] = {lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o),
-                  lane_load<V>(a.cy + o), lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)};
-          c[k] = {lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
-          const V ds = lane_load<V>(a.ds + o);
-          wk[k].hs = {ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
-          wk[k].small = lane_load<V>(a.small + o) == lane::splat<V>(1.0);
-          h[k] = lane_load<V>(a.h + o);
-          hp[k] = lane_load<V>(a.h_pos + o);
+          wk[k].u = in[k].u;
+          wk[k].hs = in[k].hs;
+          wk[k].small = in[k].small;
         }
         if (lane::all(wk[0].small & wk[1].small))
-          rk4_step2<true>(wk[0], wk[1], t[0], t[1], c[0], c[1], h[0], h[1], hp[0], hp[1], s[0], s[1]);
+          rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].c, in[1].c, in[0].h, in[1].h, in[0].h_pos,
+                          in[1].h_pos, s[0], s[1]);
         else
-          rk4_step2<false>(wk[0], wk[1], t[0], t[1], c[0], c[1], h[0], h[1], hp[0], hp[1], s[0], s[1]);
+          rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].c, in[1].c, in[0].h, in[1].h, in[0].h_pos,
+                           in[1].h_pos, s[0], s[1]);
       } else {
         for (int k = 0; k < N; ++k) {
-          const int o = g + k * w;
-          const Vec3<V> u{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)};
-          const Trig3<V> t{lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o),
-                           lane_load<V>(a.cy + o), lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)};
-          const ArnoldCoeffs<V> c{lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)};
-          const V ds = lane_load<V>(a.ds + o);
-          const HeadingSelect<V> hs{ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)};
-          s[k] = rk4_step(u, t, c, hs, lane_load<V>(a.h + o), lane_load<V>(a.h_pos + o),
-                          lane_load<V>(a.small + o) == lane::splat<V>(1.0));
+          const StepInput<V> in = load_step_input<V>(a, g + k * w);
+          s[k] = rk4_step(in.u, in.t, in.c, in.hs, in.h, in.h_pos, in.small);
         }
       }
       for (int k = 0; k < N; ++k) {
