@@ -108,9 +108,9 @@ void add_force_flag(CLI::App& cmd, bool& force) {
   cmd.add_flag("--force", force, "replace output files that already exist");
 }
 
-void check_output_free(const std::string& path, bool force, const std::string& flag) {
+void check_output_free(const std::string& path, bool force, const std::string& flag, const std::string& more) {
   if (force || path.empty() || !std::filesystem::exists(path)) return;
-  throw OutputExists(flag + ": " + path + " exists; pass --force to replace it");
+  throw OutputExists(flag + ": " + path + " exists; pass --force to replace it" + more);
 }
 
 }  // namespace chaosweep

@@ -33,8 +33,9 @@ struct OutputExists : std::runtime_error {
 void add_force_flag(CLI::App& cmd, bool& force);
 
 // Throws OutputExists naming `path` (and `flag`, the option that gave it)
-// when the file exists and `force` is not set.
-void check_output_free(const std::string& path, bool force, const std::string& flag = "-o");
+// when the file exists and `force` is not set; `more` ends the message.
+void check_output_free(const std::string& path, bool force, const std::string& flag = "-o",
+                       const std::string& more = "");
 
 // Runs a subcommand's body: BadInput (the module's error for bad input) and
 // OutputExists become a message and exit 2, any other exception a message

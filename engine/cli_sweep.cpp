@@ -129,9 +129,8 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       std::unique_ptr<OutputLock> lock;
       bool resuming = false;
       try {
-        if (!o->resume && !o->force && fs::exists(o->out))
-          throw OutputExists(o->out + " exists; pass --force to replace it (kept until this sweep completes), "
-                             "or --resume to keep it");
+        if (!o->resume)
+          check_output_free(o->out, o->force, "-o", " (kept until this sweep completes), or --resume to keep it");
         lock = std::make_unique<OutputLock>(o->out);  // from here on, this process is OUT's only writer
         resuming = o->resume && fs::exists(partial);
         if (o->resume && !fs::exists(partial) && fs::exists(o->out)) {

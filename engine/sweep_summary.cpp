@@ -24,11 +24,10 @@ void SweepSummary::add(const RunRow& row) {
   ++by_status_[std::size_t(row.result.status)];
   if (row.result.status != Status::ok) return;
   const double t = row.result.coverage_time;
-  if (ok_ == 0 || t < best_time_) {
+  if (std::isnan(best_time_) || t < best_time_) {  // NaN until the first ok run
     best_time_ = t;
     best_id_ = row.tuple.run_id;
   }
-  ++ok_;
   if (bins_.empty() && ok_times_.size() < exact_limit) {
     ok_times_.push_back(t);
     return;
@@ -41,7 +40,8 @@ void SweepSummary::add(const RunRow& row) {
 }
 
 double SweepSummary::median_time() const {
-  if (ok_ == 0) return NAN;
+  const std::int64_t ok = count(Status::ok);
+  if (ok == 0) return NAN;
   if (bins_.empty()) {
     std::vector<double> v = ok_times_;
     const std::size_t m = v.size() / 2;
@@ -52,7 +52,7 @@ double SweepSummary::median_time() const {
     return 0.5 * (v[m - 1] + upper);
   }
   // The middle of the bins holding ranks (ok-1)/2 and ok/2.
-  const std::int64_t lo_rank = (ok_ - 1) / 2, hi_rank = ok_ / 2;
+  const std::int64_t lo_rank = (ok - 1) / 2, hi_rank = ok / 2;
   double lo = NAN, hi = NAN;
   std::int64_t seen = 0;
   for (const auto& [b, n] : bins_) {
@@ -79,7 +79,7 @@ std::string SweepSummary::text() const {
   s += buf;
   if (count(Status::timeout) + count(Status::stuck) > 0)
     s += "            (timeout/stuck: coverage stalled below dc within the budget, e.g. a regular orbit)\n";
-  if (ok_ == 0) {
+  if (count(Status::ok) == 0) {
     s += "coverage time: no run reached the desired coverage\n";
   } else {
     std::snprintf(buf, sizeof buf, "best CT     %.1f s  (run_id %lld)\nmedian CT   %.1f s  (over ok runs%s)\n",

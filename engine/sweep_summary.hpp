@@ -30,10 +30,10 @@ class SweepSummary {
 
  private:
   void bin(double t);
-  std::int64_t runs_ = 0, best_id_ = -1, ok_ = 0;
+  std::int64_t runs_ = 0, best_id_ = -1;
   double best_time_ = NAN;
   std::array<std::int64_t, 6> by_status_{};
-  std::vector<double> ok_times_;               // while ok_ <= exact_limit
+  std::vector<double> ok_times_;               // while there are <= exact_limit
   std::map<std::uint64_t, std::int64_t> bins_;  // after: count per bin
 };
 
