@@ -22,15 +22,20 @@ struct LaneArrays {
   // robot (with Eq. 7's single reflections) and advances the clock when the
   // step stays in its cell and triggers no end or segment check — the same
   // operations the scalar PlannerRun would do. Any other step sets its bit in `flagged` and is left to the
-  // sink, which redoes it in full.
+  // sink, which redoes it in full. A step into a neighbouring cell (fast = 2)
+  // is applied too and its bit set in `entered`: the sink marks the cell.
   alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
   alignas(64) double budget[max_lanes], stuck_time[max_lanes], t_last_new[max_lanes];
   alignas(64) double seg_step[max_lanes], niter[max_lanes], steps[max_lanes];
   alignas(64) double lo_x[max_lanes], hi_x[max_lanes], lo_y[max_lanes], hi_y[max_lanes];
   alignas(64) double inv_cell[max_lanes], max_i[max_lanes], max_j[max_lanes];
   alignas(64) double cell_i[max_lanes], cell_j[max_lanes];
-  alignas(64) double fast[max_lanes];  // 1: the fast path applies to this lane
+  // 0: no fast path; 1: steps that stay in their cell; 2: also steps into a
+  // neighbouring cell across one edge (no map zoning, whose windows count
+  // every cell touched: then only marking the entered cell is left).
+  alignas(64) double fast[max_lanes];
   unsigned flagged = 0;  // out: bit l set when the sink must handle lane l's step
+  unsigned entered = 0;  // out: bit l set when lane l's applied step entered a new cell
 };
 
 // Consumes each computed step (boundaries, grid, decisions, refill) and

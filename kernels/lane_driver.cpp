@@ -51,21 +51,10 @@ class LaneDriver final : public LaneSink {
   // lane's step itself); idle lanes stay flagged and are skipped here.
   bool post_step() override {
     bool refilled = false;
-    for (unsigned m = a_.flagged; m != 0; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      Slot& s = slots_[std::size_t(l)];
-      if (!s.run) continue;
-      try {
-        if (!s.run->lane_step(a_, l)) continue;
-        complete(s);
-      } catch (const std::exception& e) {
-        record_error(results_[s.item], e.what());
-        s.run.reset();
-        count(results_[s.item]);
-      }
-      load(l);
-      refilled = true;
-    }
+    // Steps the integrator applied into a new cell, then the flagged steps;
+    // the two sets are disjoint.
+    for (unsigned m = a_.entered; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), true);
+    for (unsigned m = a_.flagged; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), false);
     if (refilled) active_ = any_active();
     return active_;
   }
@@ -98,6 +87,23 @@ class LaneDriver final : public LaneSink {
     a_.t_last_new[l] = a_.lo_x[l] = a_.hi_x[l] = a_.lo_y[l] = a_.hi_y[l] = 0.0;
     a_.inv_cell[l] = 1.0;
     a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
+  }
+
+  // Lane l's step for the sink (PlannerRun::lane_entered or lane_step); when
+  // its run ends, the lane takes the next one. Returns true when it did.
+  bool handle(int l, bool entered) {
+    Slot& s = slots_[std::size_t(l)];
+    if (!s.run) return false;
+    try {
+      if (!(entered ? s.run->lane_entered(a_, l) : s.run->lane_step(a_, l))) return false;
+      complete(s);
+    } catch (const std::exception& e) {
+      record_error(results_[s.item], e.what());
+      s.run.reset();
+      count(results_[s.item]);
+    }
+    load(l);
+    return true;
   }
 
   void complete(Slot& s) {

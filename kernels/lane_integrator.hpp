@@ -20,12 +20,17 @@ inline void lane_store(double* p, V v) {
   __builtin_memcpy(p, &v, sizeof v);
 }
 
+// The steps fast_path applied (lane o in bit 0), and among them those that
+// entered a neighbouring cell, which the sink must mark (LaneArrays::entered).
+struct FastPathBits {
+  unsigned applied, entered;
+};
+
 // The step's common case, vectorised (see LaneArrays). Mirrors
 // RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
 // operation for operation, so a lane's result never depends on the path.
-// Returns the lanes it applied the step to, one bit each (lane o in bit 0).
 template <class V>
-inline unsigned fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
+inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   const V zero = lane::splat<V>(0.0), one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
   // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a step
@@ -46,17 +51,26 @@ inline unsigned fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   ci = lane::select(ci < mi, ci, mi);
   cj = lane::select(cj < mj, cj, mj);
   const V seg = lane_load<V>(a.seg_step + o) + one;
+  const V fast = lane_load<V>(a.fast + o), cell_i = lane_load<V>(a.cell_i + o), cell_j = lane_load<V>(a.cell_j + o);
   const auto inside = (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
-  const auto quiet = inside & (lane_load<V>(a.fast + o) == one) & (ci == lane_load<V>(a.cell_i + o)) &
-                     (cj == lane_load<V>(a.cell_j + o)) & (t1 < lane_load<V>(a.budget + o)) &
-                     ((t1 - lane_load<V>(a.t_last_new + o)) < lane_load<V>(a.stuck_time + o)) &
-                     (seg < lane_load<V>(a.niter + o)) & (s.u.x == s.u.x) & (s.u.y == s.u.y) & (s.u.z == s.u.z);
-  lane_store(a.X + o, lane::select(quiet, X1, X));
-  lane_store(a.Y + o, lane::select(quiet, Y1, Y));
-  lane_store(a.t + o, lane::select(quiet, t1, t));
-  lane_store(a.seg_step + o, lane::select(quiet, seg, seg - one));
-  lane_store(a.steps + o, lane_load<V>(a.steps + o) + lane::select(quiet, one, zero));
-  return lane::bits(quiet);
+  const auto ok = inside & (fast >= one) & (t1 < lane_load<V>(a.budget + o)) &
+                  ((t1 - lane_load<V>(a.t_last_new + o)) < lane_load<V>(a.stuck_time + o)) &
+                  (seg < lane_load<V>(a.niter + o)) & (s.u.x == s.u.x) & (s.u.y == s.u.y) & (s.u.z == s.u.z);
+  // Cell indices are small whole numbers: the step crossed one edge exactly
+  // when the squared index distance is 1 (a corner or a longer jump is left
+  // to the sink's supercover).
+  const V di = ci - cell_i, dj = cj - cell_j;
+  const auto quiet = ok & (ci == cell_i) & (cj == cell_j);
+  const auto entered = ok & (fast == lane::splat<V>(2.0)) & (lane::fma(di, di, dj * dj) == one);
+  const auto applied = quiet | entered;
+  lane_store(a.X + o, lane::select(applied, X1, X));
+  lane_store(a.Y + o, lane::select(applied, Y1, Y));
+  lane_store(a.t + o, lane::select(applied, t1, t));
+  lane_store(a.cell_i + o, lane::select(applied, ci, cell_i));
+  lane_store(a.cell_j + o, lane::select(applied, cj, cell_j));
+  lane_store(a.seg_step + o, lane::select(applied, seg, seg - one));
+  lane_store(a.steps + o, lane_load<V>(a.steps + o) + lane::select(applied, one, zero));
+  return {lane::bits(applied), lane::bits(entered)};
 }
 
 // One vector's inputs to a step, from the arrays at lane offset o.
@@ -91,7 +105,7 @@ template <class V, int N, bool Staged = false>
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   const unsigned all_lanes = (1u << a.lanes) - 1u;
   do {
-    unsigned quiet = 0;
+    unsigned applied = 0, entered = 0;
     for (int g = 0; g < a.lanes; g += w * N) {
       Rk4Step<V> s[N];
       if constexpr (Staged && N == 2) {
@@ -128,10 +142,13 @@ template <class V, int N, bool Staged = false>
         lane_store(a.cz + o, s[k].t.cz);
         lane_store(a.dX + o, s[k].dX);
         lane_store(a.dY + o, s[k].dY);
-        quiet |= fast_path<V>(a, o, s[k]) << o;
+        const FastPathBits b = fast_path<V>(a, o, s[k]);
+        applied |= b.applied << o;
+        entered |= b.entered << o;
       }
     }
-    a.flagged = ~quiet & all_lanes;
+    a.flagged = ~applied & all_lanes;
+    a.entered = entered;
   } while (sink.post_step());
 }
 

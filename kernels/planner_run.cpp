@@ -131,7 +131,8 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.steps[l] = double(r_.steps);
   a.seg_step[l] = seg_step_;
   a.niter[l] = p_.niter;
-  a.fast[l] = p_.boundary == Boundary::mirror && env_.obstacles.empty() && trace_ == nullptr ? 1.0 : 0.0;
+  const bool fast = p_.boundary == Boundary::mirror && env_.obstacles.empty() && trace_ == nullptr;
+  a.fast[l] = !fast ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
   // The band mirror_eq7 keeps: triangle_fold(u, 0 + fo, lx - fo).
   a.lo_x[l] = 0.0 + p_.fo;
   a.hi_x[l] = env_.lx - p_.fo;
@@ -165,6 +166,28 @@ bool PlannerRun::lane_step(LaneArrays& a, int l) {
   a.cell_i[l] = grid_.cell_x(robot_.x());
   a.cell_j[l] = grid_.cell_y(robot_.y());
   return false;
+}
+
+bool PlannerRun::lane_entered(LaneArrays& a, int l) {
+  // The reference's mark_segment marks the cell left (visited already: the
+  // robot is in it) and the one entered; without map zoning no window counts.
+  grid_.mark_cell(int(a.cell_i[l]), int(a.cell_j[l]));
+  if (grid_.visited_cells() == last_visited_) return false;
+  // after_move's consequences of a new cell; the integrator checked the rest
+  // (the clock, the budget, the stuck time against the older t_last_new, which
+  // only flags more steps, and the segment).
+  last_visited_ = grid_.visited_cells();
+  t_last_new_ = a.t[l];
+  a.t_last_new[l] = t_last_new_;
+  if (last_visited_ < needed_) return false;
+  robot_.set_position(a.X[l], a.Y[l]);
+  t_ = a.t[l];
+  r_.steps = std::int64_t(a.steps[l]);
+  seg_step_ = int(a.seg_step[l]);
+  u_ = {a.x[l], a.y[l], a.z[l]};
+  trig_ = {a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]};
+  end(Status::ok);
+  return true;
 }
 
 bool PlannerRun::point_done(double dt) {

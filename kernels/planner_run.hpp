@@ -36,6 +36,10 @@ class PlannerRun {
   // index switching, MapZoning transits, scalar). Takes over the progress the
   // fast path made since the last call and hands its own back.
   bool lane_step(LaneArrays& a, int l);
+  // The integrator applied lane l's step into a neighbouring cell (see
+  // LaneArrays::entered): marks that cell, with what follows (a new cell's
+  // time, the end at dc). Returns true when the run ended.
+  bool lane_entered(LaneArrays& a, int l);
   bool ended() const { return ended_; }
   void finish();
 

@@ -607,6 +607,7 @@ case = [
   { label = "fold", boundary = "fold" },
   { label = "is", index_switching = 1, ds_index = 1 },
   { label = "mz", map_zoning = 1, c = 0.8, env = "five_squares", start = [4.8, 1.6] },
+  { label = "mz-open", map_zoning = 1, c = 0.8 },
   { label = "mz-is-sc", map_zoning = 1, index_switching = 1, c = 0.5, f = 1.7, env = "one_square" },
   { label = "jitter", ic_jitter = 1e-6, seed = 3 },
   { label = "doubling", integrator = "rk4-doubling" },
@@ -650,8 +651,8 @@ A = [0.45, 0.5]
   int ok = 0;
   for (const RunRow& r : reference) ok += r.result.status == Status::ok;
   EXPECT_GT(ok, 5);  // most of these runs reach dc: the comparison covers whole runs
-  EXPECT_EQ(reference[18].result.status, Status::invalid);  // case 9 of 12, A = 0.45
-  EXPECT_EQ(reference[16].result.status, Status::ok) << reference[16].result.message;  // the Chebyshev run
+  EXPECT_EQ(reference[20].result.status, Status::invalid);  // case 10 of 13, A = 0.45
+  EXPECT_EQ(reference[18].result.status, Status::ok) << reference[18].result.message;  // the Chebyshev run
 }
 
 TEST(SimdChoice, HonoursAndChecksChaosweepSimd) {
