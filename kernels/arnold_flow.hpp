@@ -165,6 +165,44 @@ inline T heading_sin(const Trig3<T>& t, const HeadingSelect<T>& h) {
   return lane::select(h.is_x, t.sx, lane::select(h.is_y, t.sy, t.sz));
 }
 
+// The heading is z: for lanes, whose runs are relabelled so that their
+// DSindex coordinate sits in z (to_lane below) and need no selection.
+struct HeadingZ {};
+template <class T>
+inline T heading_cos(const Trig3<T>& t, HeadingZ) { return t.cz; }
+template <class T>
+inline T heading_sin(const Trig3<T>& t, HeadingZ) { return t.sz; }
+
+// The ABC flow is invariant under the cyclic relabelling (x, y, z; A, B, C)
+// -> (y, z, x; B, C, A): each component's formula in arnold_rhs becomes the
+// next one's, operation for operation, and rk4_step treats the coordinates
+// alike, so a relabelled run computes the same numbers. to_lane relabels a
+// run with heading ds (1=x, 2=y, 3=z) so that its heading sits in z;
+// from_lane undoes it.
+template <class T>
+inline Vec3<T> to_lane(const Vec3<T>& v, int ds) {
+  return ds == 1 ? Vec3<T>{v.y, v.z, v.x} : ds == 2 ? Vec3<T>{v.z, v.x, v.y} : v;
+}
+template <class T>
+inline Vec3<T> from_lane(const Vec3<T>& v, int ds) {
+  return ds == 1 ? Vec3<T>{v.z, v.x, v.y} : ds == 2 ? Vec3<T>{v.y, v.z, v.x} : v;
+}
+template <class T>
+inline ArnoldCoeffs<T> to_lane(const ArnoldCoeffs<T>& k, int ds) {
+  const Vec3<T> r = to_lane(Vec3<T>{k.A, k.B, k.C}, ds);
+  return {r.x, r.y, r.z};
+}
+template <class T>
+inline Trig3<T> to_lane(const Trig3<T>& t, int ds) {
+  const Vec3<T> s = to_lane(Vec3<T>{t.sx, t.sy, t.sz}, ds), c = to_lane(Vec3<T>{t.cx, t.cy, t.cz}, ds);
+  return {s.x, c.x, s.y, c.y, s.z, c.z};
+}
+template <class T>
+inline Trig3<T> from_lane(const Trig3<T>& t, int ds) {
+  const Vec3<T> s = from_lane(Vec3<T>{t.sx, t.sy, t.sz}, ds), c = from_lane(Vec3<T>{t.cx, t.cy, t.cz}, ds);
+  return {s.x, c.x, s.y, c.y, s.z, c.z};
+}
+
 // Result of one RK4 step: the new (wrapped) Arnold state, its trig (the next
 // step's stage 1) and the robot's displacement. The robot's equations depend
 // on the heading only, so its displacement is the RK4 weighted mean of the
@@ -178,20 +216,20 @@ struct Rk4Step {
 
 // One RK4 step split into its stages, so a kernel may interleave the stages
 // of independent vectors (rk4_step2); rk4_step runs them in order. The
-// operations per lane are the same either way.
-template <class T>
+// operations per lane are the same either way. H: HeadingSelect<T> or HeadingZ.
+template <class T, class H>
 struct Rk4Work {
   Vec3<T> u;
   ArnoldCoeffs<T> kh;
-  HeadingSelect<T> hs;
+  H hs;
   decltype(T() < T()) small;
   Trig3<T> t;  // the current stage's trig
   Vec3<T> K1, K2, K33;
   T c1, s1, c2, s2;
 };
 
-template <bool AllSmall, class T>
-inline void rk4_stage1(Rk4Work<T>& w, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, T h) {
+template <bool AllSmall, class T, class H>
+inline void rk4_stage1(Rk4Work<T, H>& w, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, T h) {
   const T half = h * lane::splat<T>(0.5);
   w.kh = {half * k.A, half * k.B, half * k.C};
   w.K1 = arnold_rhs(t1, w.kh);
@@ -200,16 +238,16 @@ inline void rk4_stage1(Rk4Work<T>& w, const Trig3<T>& t1, const ArnoldCoeffs<T>&
   w.t = trig3_stage_as<AllSmall, ShiftForm::short_>(t1, w.K1, w.u + w.K1, w.small);
 }
 
-template <bool AllSmall, class T>
-inline void rk4_stage2(Rk4Work<T>& w) {
+template <bool AllSmall, class T, class H>
+inline void rk4_stage2(Rk4Work<T, H>& w) {
   w.K2 = arnold_rhs(w.t, w.kh);
   w.c2 = heading_cos(w.t, w.hs);
   w.s2 = heading_sin(w.t, w.hs);
   w.t = trig3_stage_as<AllSmall, ShiftForm::tiny>(w.t, w.K2 - w.K1, w.u + w.K2, w.small);
 }
 
-template <bool AllSmall, class T>
-inline void rk4_stage3(Rk4Work<T>& w) {
+template <bool AllSmall, class T, class H>
+inline void rk4_stage3(Rk4Work<T, H>& w) {
   const Vec3<T> K3 = arnold_rhs(w.t, w.kh);
   w.c2 = w.c2 + heading_cos(w.t, w.hs);  // c23
   w.s2 = w.s2 + heading_sin(w.t, w.hs);  // s23
@@ -219,8 +257,8 @@ inline void rk4_stage3(Rk4Work<T>& w) {
   w.K2 = K23;
 }
 
-template <bool AllSmall, class T>
-inline Rk4Step<T> rk4_stage4(Rk4Work<T>& w, T h_pos) {
+template <bool AllSmall, class T, class H>
+inline Rk4Step<T> rk4_stage4(Rk4Work<T, H>& w, T h_pos) {
   using lane::fma;
   const T two = lane::splat<T>(2.0);
   const Vec3<T> K4 = arnold_rhs(w.t, w.kh);
@@ -259,10 +297,10 @@ inline Rk4Step<T> rk4_stage4(Rk4Work<T>& w, T h_pos) {
 // reduced at once to what later stages need (its K and heading), and stages
 // 1+4 and 2+3 are summed as they come: this keeps few vectors live. The
 // operations are the same in every width.
-template <class T>
-inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k,
-                           const HeadingSelect<T>& hs, T h, T h_pos, decltype(T() < T()) small) {
-  Rk4Work<T> w;
+template <class T, class H>
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, const H& hs, T h,
+                           T h_pos, decltype(T() < T()) small) {
+  Rk4Work<T, H> w;
   w.u = u;
   w.hs = hs;
   w.small = small;
@@ -276,8 +314,8 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoe
 // them), stage by stage in turn, so their dependency chains overlap. Each
 // lane's operations are rk4_step's. AllSmall: every lane of both is in
 // small-shift mode.
-template <bool AllSmall, class T>
-inline void rk4_step2(Rk4Work<T>& a, Rk4Work<T>& b, const Trig3<T>& ta, const Trig3<T>& tb,
+template <bool AllSmall, class T, class H>
+inline void rk4_step2(Rk4Work<T, H>& a, Rk4Work<T, H>& b, const Trig3<T>& ta, const Trig3<T>& tb,
                       const ArnoldCoeffs<T>& ka, const ArnoldCoeffs<T>& kb, T ha, T hb, T hpa, T hpb,
                       Rk4Step<T>& oa, Rk4Step<T>& ob) {
   rk4_stage1<AllSmall>(a, ta, ka, ha);
@@ -294,13 +332,13 @@ inline void rk4_step2(Rk4Work<T>& a, Rk4Work<T>& b, const Trig3<T>& ta, const Tr
 template <class T>
 inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const HeadingSelect<T>& hs, T h,
                            T h_pos, decltype(T() < T()) small) {
-  return rk4_step<T>(u, trig3(u), k, hs, h, h_pos, small);
+  return rk4_step<T, HeadingSelect<T>>(u, trig3(u), k, hs, h, h_pos, small);
 }
 
 // Scalar conveniences: the mode from the run's own parameters.
 inline Rk4Step<double> rk4_step(const Vec3<double>& u, const Trig3<double>& t, const ArnoldCoeffs<double>& k,
                                 const HeadingSelect<double>& hs, double h, double h_pos) {
-  return rk4_step<double>(u, t, k, hs, h, h_pos, small_shift_mode(h, k.A, k.B, k.C));
+  return rk4_step<double, HeadingSelect<double>>(u, t, k, hs, h, h_pos, small_shift_mode(h, k.A, k.B, k.C));
 }
 inline Rk4Step<double> rk4_step(const Vec3<double>& u, const ArnoldCoeffs<double>& k,
                                 const HeadingSelect<double>& hs, double h, double h_pos) {

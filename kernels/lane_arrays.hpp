@@ -8,12 +8,13 @@ namespace chaosweep {
 struct LaneArrays {
   static constexpr int max_lanes = 16;
   int lanes = 0;
-  // Arnold state and step parameters per lane (ds as 1.0, 2.0, 3.0).
+  // Arnold state and step parameters per lane, relabelled so that the
+  // heading coordinate is z (to_lane in arnold_flow.hpp).
   alignas(64) double x[max_lanes], y[max_lanes], z[max_lanes];
   // Their sines and cosines, carried from step to step (rk4_step's t1).
   alignas(64) double sx[max_lanes], cx[max_lanes], sy[max_lanes], cy[max_lanes], sz[max_lanes], cz[max_lanes];
   alignas(64) double A[max_lanes], B[max_lanes], C[max_lanes];
-  alignas(64) double h[max_lanes], h_pos[max_lanes], ds[max_lanes];
+  alignas(64) double h[max_lanes], h_pos[max_lanes];
   alignas(64) double small[max_lanes];  // 1: small-shift mode (arnold_flow.hpp)
   // The step's robot displacement, written by the integrator.
   alignas(64) double dX[max_lanes], dY[max_lanes];

@@ -79,7 +79,6 @@ class LaneDriver final : public LaneSink {
     a_.x[l] = a_.y[l] = a_.z[l] = a_.A[l] = a_.B[l] = a_.C[l] = a_.h[l] = a_.h_pos[l] = 0.0;
     a_.sx[l] = a_.sy[l] = a_.sz[l] = 0.0;
     a_.cx[l] = a_.cy[l] = a_.cz[l] = 1.0;
-    a_.ds[l] = 3.0;
     a_.small[l] = 1.0;
     a_.fast[l] = 0.0;
     a_.X[l] = a_.Y[l] = a_.t[l] = a_.fh[l] = a_.steps[l] = a_.seg_step[l] = 0.0;

@@ -79,19 +79,16 @@ struct StepInput {
   Vec3<V> u;
   Trig3<V> t;
   ArnoldCoeffs<V> c;
-  HeadingSelect<V> hs;
   V h, h_pos;
   decltype(V() < V()) small;
 };
 
 template <class V>
 inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
-  const V ds = lane_load<V>(a.ds + o);
   return {{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)},
           {lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o), lane_load<V>(a.cy + o),
            lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)},
           {lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)},
-          {ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)},
           lane_load<V>(a.h + o),
           lane_load<V>(a.h_pos + o),
           lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
@@ -111,10 +108,9 @@ template <class V, int N, bool Staged = false>
       if constexpr (Staged && N == 2) {
         // The two vectors' steps stage by stage in turn (rk4_step2).
         const StepInput<V> in[2] = {load_step_input<V>(a, g), load_step_input<V>(a, g + w)};
-        Rk4Work<V> wk[2];
+        Rk4Work<V, HeadingZ> wk[2];
         for (int k = 0; k < 2; ++k) {
           wk[k].u = in[k].u;
-          wk[k].hs = in[k].hs;
           wk[k].small = in[k].small;
         }
         if (lane::all(wk[0].small & wk[1].small))
@@ -126,7 +122,7 @@ template <class V, int N, bool Staged = false>
       } else {
         for (int k = 0; k < N; ++k) {
           const StepInput<V> in = load_step_input<V>(a, g + k * w);
-          s[k] = rk4_step(in.u, in.t, in.c, in.hs, in.h, in.h_pos, in.small);
+          s[k] = rk4_step(in.u, in.t, in.c, HeadingZ{}, in.h, in.h_pos, in.small);
         }
       }
       for (int k = 0; k < N; ++k) {

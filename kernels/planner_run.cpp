@@ -104,22 +104,32 @@ void PlannerRun::end_segment() {
   if (!ended_) begin_segment();
 }
 
+Vec3<double> PlannerRun::lane_state(const LaneArrays& a, int l) const {
+  return from_lane(Vec3<double>{a.x[l], a.y[l], a.z[l]}, ds_);
+}
+
+Trig3<double> PlannerRun::lane_trig(const LaneArrays& a, int l) const {
+  return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, ds_);
+}
+
 void PlannerRun::write_lane(LaneArrays& a, int l) const {
-  a.x[l] = u_.x;
-  a.y[l] = u_.y;
-  a.z[l] = u_.z;
-  a.sx[l] = trig_.sx;
-  a.cx[l] = trig_.cx;
-  a.sy[l] = trig_.sy;
-  a.cy[l] = trig_.cy;
-  a.sz[l] = trig_.sz;
-  a.cz[l] = trig_.cz;
-  a.A[l] = p_.A;
-  a.B[l] = p_.B;
-  a.C[l] = p_.C;
+  const Vec3<double> u = to_lane(u_, ds_);
+  const Trig3<double> t = to_lane(trig_, ds_);
+  const ArnoldCoeffs<double> k = to_lane(k_, ds_);
+  a.x[l] = u.x;
+  a.y[l] = u.y;
+  a.z[l] = u.z;
+  a.sx[l] = t.sx;
+  a.cx[l] = t.cx;
+  a.sy[l] = t.sy;
+  a.cy[l] = t.cy;
+  a.sz[l] = t.sz;
+  a.cz[l] = t.cz;
+  a.A[l] = k.A;
+  a.B[l] = k.B;
+  a.C[l] = k.C;
   a.h[l] = h_;
   a.h_pos[l] = p_.f * p_.v * h_;
-  a.ds[l] = double(ds_);
   a.small[l] = small_shift_mode(h_, p_.A, p_.B, p_.C) ? 1.0 : 0.0;
   a.X[l] = robot_.x();
   a.Y[l] = robot_.y();
@@ -150,8 +160,7 @@ bool PlannerRun::lane_step(LaneArrays& a, int l) {
   t_ = a.t[l];
   r_.steps = std::int64_t(a.steps[l]);
   seg_step_ = int(a.seg_step[l]);
-  const bool segment_or_end = arnold_step_done({a.x[l], a.y[l], a.z[l]},
-                                                     {a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, a.dX[l], a.dY[l]);
+  const bool segment_or_end = arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);
   if (ended_) return true;
   if (segment_or_end) {  // DSindex or the robot may have changed: all of it
     write_lane(a, l);
@@ -184,8 +193,8 @@ bool PlannerRun::lane_entered(LaneArrays& a, int l) {
   t_ = a.t[l];
   r_.steps = std::int64_t(a.steps[l]);
   seg_step_ = int(a.seg_step[l]);
-  u_ = {a.x[l], a.y[l], a.z[l]};
-  trig_ = {a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]};
+  u_ = lane_state(a, l);
+  trig_ = lane_trig(a, l);
   end(Status::ok);
   return true;
 }

@@ -71,6 +71,9 @@ class PlannerRun {
   // dt and checks every way the run can end. Returns true when it ended.
   [[gnu::always_inline]] inline bool after_move(double dt, SegmentKind kind);
   void end(Status s, const char* why = nullptr);
+  // Lane l's Arnold state and its trig in this run's own labels.
+  Vec3<double> lane_state(const LaneArrays& a, int l) const;
+  Trig3<double> lane_trig(const LaneArrays& a, int l) const;
 
   const RunParams& p_;
   const Environment& env_;

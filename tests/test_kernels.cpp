@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <numbers>
 #include <random>
@@ -247,6 +248,29 @@ TEST(Rk4Step, IsFourthOrderUnderStepHalving) {
   EXPECT_LT(e1 / e2, 20.0);
   EXPECT_GT(e2 / e3, 13.0);
   EXPECT_LT(e2 / e3, 19.0);
+}
+
+TEST(Rk4Step, ARunRelabelledWithItsHeadingInZComputesTheSameNumbers) {
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> angle(-3.1, 3.1), coeff(0.05, 0.9);
+  for (int i = 0; i < 3000; ++i) {
+    const int ds = 1 + i % 3;
+    const double h = i % 2 ? 0.1 : 0.5;  // small-shift mode and full sincos
+    const Vec3<double> u{angle(rng), angle(rng), angle(rng)};
+    const ArnoldCoeffs<double> k{coeff(rng), coeff(rng), coeff(rng)};
+    const bool small = small_shift_mode(h, k.A, k.B, k.C);
+    const Rk4Step<double> want = rk4_step<double>(u, trig3(u), k, heading_select(ds), h, 0.1, small);
+    const Rk4Step<double> lane = rk4_step<double>(to_lane(u, ds), to_lane(trig3(u), ds), to_lane(k, ds), HeadingZ{}, h, 0.1, small);
+    const Vec3<double> got = from_lane(lane.u, ds);
+    const Trig3<double> t = from_lane(lane.t, ds);
+    ASSERT_TRUE(same(got.x, want.u.x) && same(got.y, want.u.y) && same(got.z, want.u.z)) << i;
+    ASSERT_TRUE(same(t.sx, want.t.sx) && same(t.cx, want.t.cx) && same(t.sy, want.t.sy) && same(t.cy, want.t.cy) &&
+                same(t.sz, want.t.sz) && same(t.cz, want.t.cz)) << i;
+    ASSERT_TRUE(same(lane.dX, want.dX) && same(lane.dY, want.dY)) << i;
+    const Vec3<double> back = from_lane(to_lane(u, ds), ds);
+    ASSERT_TRUE(same(back.x, u.x) && same(back.y, u.y) && same(back.z, u.z)) << i;
+  }
 }
 
 // -------------------------------------------------------------- boundaries
