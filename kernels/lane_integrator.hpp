@@ -44,10 +44,10 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   Y1 = lane::select(Y1 > hi_y, (hi_y + hi_y) - Y1, Y1);
   const V t1 = t + lane_load<V>(a.fh + o);
   const V inv = lane_load<V>(a.inv_cell + o);
-  const V gi = X1 * inv, gj = Y1 * inv;
-  V ci = lane::select(gi > zero, lane::trunc(gi), zero);
-  V cj = lane::select(gj > zero, lane::trunc(gj), zero);
+  // cell_x's clamp from below is a no-op for the steps applied: they end
+  // inside the band, X1 >= lo_x = fo >= 0 (a -0 index compares equal to 0).
   const V mi = lane_load<V>(a.max_i + o), mj = lane_load<V>(a.max_j + o);
+  V ci = lane::trunc(X1 * inv), cj = lane::trunc(Y1 * inv);
   ci = lane::select(ci < mi, ci, mi);
   cj = lane::select(cj < mj, cj, mj);
   const V seg = lane_load<V>(a.seg_step + o) + one;
