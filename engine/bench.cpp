@@ -1,5 +1,6 @@
 #include "bench.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -44,33 +45,53 @@ Environment empty_map() {
   return env;
 }
 
-BenchReport::Width measure_width(SimdTarget target, double seconds) {
+// ns per step of `batch` (which returns the steps it took), repeated for at
+// least `seconds`.
+template <class Batch>
+double ns_per_step(Batch batch, double seconds) {
+  double steps = 0, elapsed = 0;
+  const auto t0 = clock_type::now();
+  do {
+    steps += batch();
+    elapsed = seconds_since(t0);
+  } while (elapsed < seconds);
+  return 1e9 * elapsed / steps;
+}
+
+// The whole lane pipeline of one target over the workload.
+double measure_width(SimdTarget target, double seconds) {
   const Environment env = empty_map();
   // Fewer runs for the slow portable width, so that one pass stays short.
   const auto runs = workload(target == SimdTarget::scalar ? 16 : 1024);
   std::vector<BatchItem> items;
   for (const RunParams& p : runs) items.push_back({&p, &env});
   std::vector<RunResult> results(runs.size());
-  double steps = 0, elapsed = 0;
-  const auto t0 = clock_type::now();
-  do {
-    run_batch(items.data(), results.data(), items.size(), target);
-    for (const RunResult& r : results) steps += double(r.steps);
-    elapsed = seconds_since(t0);
-  } while (elapsed < seconds);
-  return {to_string(target), lane_width(target), 1e9 * elapsed / steps, steps};
+  return ns_per_step(
+      [&] {
+        run_batch(items.data(), results.data(), items.size(), target);
+        double steps = 0;
+        for (const RunResult& r : results) steps += double(r.steps);
+        return steps;
+      },
+      seconds);
 }
 
 double measure_naive(double seconds) {
   const Environment env = empty_map();
   const auto runs = workload(16);
-  double steps = 0, elapsed = 0;
-  const auto t0 = clock_type::now();
-  do {
-    for (const RunParams& p : runs) steps += double(naive_original_arnold(p, env));
-    elapsed = seconds_since(t0);
-  } while (elapsed < seconds);
-  return 1e9 * elapsed / steps;
+  return ns_per_step(
+      [&] {
+        double steps = 0;
+        for (const RunParams& p : runs) steps += double(naive_original_arnold(p, env));
+        return steps;
+      },
+      seconds);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 const char* sweep_spec = R"(
@@ -122,10 +143,25 @@ BenchReport run_bench(double seconds) {
   BenchReport r;
   const SimdTarget best = best_simd_target();
   r.cpu_best = to_string(best);
+  std::vector<SimdTarget> targets;
   for (SimdTarget t : {SimdTarget::scalar, SimdTarget::avx2, SimdTarget::avx512})
-    if (cpu_supports(t)) r.widths.push_back(measure_width(t, seconds));
-  r.naive_ns_per_step = measure_naive(seconds);
+    if (cpu_supports(t)) targets.push_back(t);
+  // Rounds of every measurement in turn, so that a burst of load on the
+  // shared machine hits all of them alike; each reports its best round (load
+  // only ever adds time) and the median of the rounds.
+  std::vector<std::vector<double>> width_ns(targets.size());
+  std::vector<double> naive_ns;
+  for (int round = 0; round < bench_rounds; ++round) {
+    for (std::size_t i = 0; i < targets.size(); ++i)
+      width_ns[i].push_back(measure_width(targets[i], seconds / bench_rounds));
+    naive_ns.push_back(measure_naive(seconds / bench_rounds));
+  }
+  for (std::size_t i = 0; i < targets.size(); ++i)
+    r.widths.push_back({to_string(targets[i]), lane_width(targets[i]),
+                        *std::min_element(width_ns[i].begin(), width_ns[i].end()), median(width_ns[i])});
+  r.naive_ns_per_step = *std::min_element(naive_ns.begin(), naive_ns.end());
   r.best_vs_naive = r.naive_ns_per_step / r.widths.back().ns_per_lane_step;
+  r.best_vs_naive_median = median(naive_ns) / r.widths.back().ns_per_lane_step_median;
 
   const SweepSpec spec = parse_sweep_spec(sweep_spec, "bench");
   r.sweep_runs = int(spec.size());
@@ -145,34 +181,42 @@ BenchReport run_bench(double seconds) {
 
 std::string bench_json(const BenchReport& r) {
   std::string s = "{\n  \"widths\": [";
-  char buf[256];
+  char buf[512];
   for (std::size_t i = 0; i < r.widths.size(); ++i) {
     const auto& w = r.widths[i];
-    std::snprintf(buf, sizeof buf, "%s\n    {\"target\": \"%s\", \"width\": %d, \"ns_per_lane_step\": %.3f, \"lane_steps\": %.0f}",
-                  i ? "," : "", w.target.c_str(), w.width, w.ns_per_lane_step, w.lane_steps);
+    std::snprintf(buf, sizeof buf,
+                  "%s\n    {\"target\": \"%s\", \"width\": %d, \"ns_per_lane_step\": %.3f, "
+                  "\"ns_per_lane_step_median\": %.3f}",
+                  i ? "," : "", w.target.c_str(), w.width, w.ns_per_lane_step, w.ns_per_lane_step_median);
     s += buf;
   }
   std::snprintf(buf, sizeof buf,
-                "\n  ],\n  \"naive_scalar_glibc_ns_per_step\": %.3f,\n  \"best_vs_naive\": %.2f,\n"
+                "\n  ],\n  \"rounds\": %d,\n  \"naive_scalar_glibc_ns_per_step\": %.3f,\n  \"best_vs_naive\": %.2f,\n"
+                "  \"best_vs_naive_median\": %.2f,\n"
                 "  \"sweep_runs\": %d,\n  \"sweep_runs_per_s\": %.1f,\n  \"sweep_overhead\": %.4f,\n"
                 "  \"scaling_2_threads\": %.3f,\n  \"cpu_best\": \"%s\"\n}",
-                r.naive_ns_per_step, r.best_vs_naive, r.sweep_runs, r.sweep_runs_per_s, r.sweep_overhead,
+                bench_rounds, r.naive_ns_per_step, r.best_vs_naive, r.best_vs_naive_median, r.sweep_runs, r.sweep_runs_per_s, r.sweep_overhead,
                 r.scaling_2_threads, r.cpu_best.c_str());
   return s + buf;
 }
 
 std::string bench_text(const BenchReport& r) {
   std::string s;
-  char buf[256];
-  s += "original Arnold, fixed-step RK4, double, 50 m map, SR 4 m (ns per lane-step, whole lane pipeline)\n";
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "original Arnold, fixed-step RK4, double, 50 m map, SR 4 m (ns per lane-step, whole lane pipeline;\n"
+                "best and median of %d rounds)\n",
+                bench_rounds);
+  s += buf;
   for (const auto& w : r.widths) {
-    std::snprintf(buf, sizeof buf, "  %-7s width %d   %8.2f ns/lane-step   (%.3g lane-steps)\n", w.target.c_str(),
-                  w.width, w.ns_per_lane_step, w.lane_steps);
+    std::snprintf(buf, sizeof buf, "  %-7s width %d   %8.2f ns/lane-step   (median %.2f)\n", w.target.c_str(), w.width,
+                  w.ns_per_lane_step, w.ns_per_lane_step_median);
     s += buf;
   }
   std::snprintf(buf, sizeof buf, "  naive scalar with glibc sin/cos   %8.2f ns/step\n", r.naive_ns_per_step);
   s += buf;
-  std::snprintf(buf, sizeof buf, "  fastest width vs naive            %8.2fx\n", r.best_vs_naive);
+  std::snprintf(buf, sizeof buf, "  fastest width vs naive            %8.2fx   (medians: %.2fx)\n", r.best_vs_naive,
+                r.best_vs_naive_median);
   s += buf;
   std::snprintf(buf, sizeof buf,
                 "whole sweep (%d runs: spec, TBB, kernels, HDF5)\n  %.1f runs/s on 1 thread, overhead over "

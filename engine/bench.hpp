@@ -9,13 +9,14 @@ namespace chaosweep {
 struct BenchReport {
   struct Width {
     std::string target;
-    int width;                 // doubles per vector
-    double ns_per_lane_step;   // whole lane pipeline: RK4, boundary, grid, checks, refill
-    double lane_steps;         // measured
+    int width;                        // doubles per vector
+    double ns_per_lane_step;          // whole lane pipeline (RK4, boundary, grid, checks, refill): best round
+    double ns_per_lane_step_median;   // the median round
   };
   std::vector<Width> widths;   // every target this CPU runs
-  double naive_ns_per_step;    // glibc sin/cos scalar baseline
-  double best_vs_naive;        // naive / fastest width
+  double naive_ns_per_step;    // glibc sin/cos scalar baseline, best round
+  double best_vs_naive;        // naive / fastest width, best rounds
+  double best_vs_naive_median; // the same from the median rounds
   double sweep_runs_per_s;     // whole sweep: spec, scheduling, kernels, HDF5 (1 thread)
   double sweep_overhead;       // sweep time / kernel time - 1 (1 thread)
   double scaling_2_threads;    // sweep time with 1 thread / with 2 threads
@@ -23,7 +24,9 @@ struct BenchReport {
   std::string cpu_best;
 };
 
-// Repeats each measurement for at least `seconds`.
+// Each kernel measurement takes `bench_rounds` rounds, interleaved, of at
+// least seconds / bench_rounds each.
+inline constexpr int bench_rounds = 5;
 BenchReport run_bench(double seconds);
 std::string bench_json(const BenchReport& r);
 std::string bench_text(const BenchReport& r);

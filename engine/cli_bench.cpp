@@ -17,7 +17,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& action) {
   auto json = std::make_shared<bool>(false);
   auto seconds = std::make_shared<double>(1.0);
   cmd->add_flag("--json", *json, "print one JSON object");
-  cmd->add_option("--seconds", *seconds, "minimum time per kernel measurement")->check(CLI::Range(0.01, 600.0));
+  cmd->add_option("--seconds", *seconds, "minimum time per kernel measurement, over all its rounds")->check(CLI::Range(0.01, 600.0));
   cmd->callback([json, seconds, &action] {
     action = [json, seconds]() -> int {
       const BenchReport r = run_bench(*seconds);

@@ -561,3 +561,40 @@ TEST(CliSweep, TenMillionRunSweepStartsAtOnceInBoundedMemory) {
   ASSERT_EQ(plan.exit_code, 0) << plan.err;
   EXPECT_NE(plan.out.find("runs        10000000"), std::string::npos) << plan.out;
 }
+
+// The report's shape (speed itself is for BENCHMARKS.md, never asserted).
+TEST(CliBench, JsonReportsEachWidthTheNaiveRatioAndTheWholeSweep) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "a bench of a sanitizer build measures the sanitizer; the Release suite runs it";
+#endif
+  const auto r = chaosweep::test::run_chaosweep("bench --json --seconds 0.05");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto number = [&](const std::string& key) {
+    std::smatch m;
+    const std::regex re("\"" + key + "\": ([-0-9.e+]+)");
+    EXPECT_TRUE(std::regex_search(r.out, m, re)) << key << " missing in\n" << r.out;
+    return m.empty() ? std::nan("") : std::stod(m[1]);
+  };
+  for (const char* target : {"scalar", "avx2", "avx512"}) {
+    const std::regex width("\\{\"target\": \"" + std::string(target) +
+                           "\", \"width\": [148], \"ns_per_lane_step\": ([0-9.]+), \"ns_per_lane_step_median\": ([0-9.]+)\\}");
+    std::smatch m;
+    const bool present = std::regex_search(r.out, m, width);
+    if (std::string(target) == "scalar") {
+      EXPECT_TRUE(present) << r.out;  // every CPU runs the portable width
+    }
+    if (!present) continue;
+    EXPECT_GT(std::stod(m[1]), 0.0);
+    EXPECT_LE(std::stod(m[1]), std::stod(m[2]));  // best round <= median round
+  }
+  EXPECT_EQ(number("rounds"), 5);
+  EXPECT_GT(number("naive_scalar_glibc_ns_per_step"), 0.0);
+  EXPECT_GT(number("best_vs_naive"), 1.0);  // any width beats glibc sin/cos called 24 times a step
+  EXPECT_GT(number("best_vs_naive_median"), 1.0);
+  EXPECT_EQ(number("sweep_runs"), 2048);
+  EXPECT_GT(number("sweep_runs_per_s"), 0.0);
+  EXPECT_GT(number("scaling_2_threads"), 0.0);
+  EXPECT_TRUE(std::isfinite(number("sweep_overhead")));
+  EXPECT_NE(r.out.find("\"cpu_best\": \""), std::string::npos);
+  EXPECT_EQ(r.out.back() == '\n' ? r.out[r.out.size() - 2] : r.out.back(), '}');
+}
