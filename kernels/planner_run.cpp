@@ -155,11 +155,15 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.cell_j[l] = grid_.cell_y(robot_.y());
 }
 
-bool PlannerRun::lane_step(LaneArrays& a, int l) {
+void PlannerRun::take_lane_progress(const LaneArrays& a, int l) {
   robot_.set_position(a.X[l], a.Y[l]);
   t_ = a.t[l];
   r_.steps = std::int64_t(a.steps[l]);
   seg_step_ = int(a.seg_step[l]);
+}
+
+bool PlannerRun::lane_step(LaneArrays& a, int l) {
+  take_lane_progress(a, l);
   const bool segment_or_end = arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);
   if (ended_) return true;
   if (segment_or_end) {  // DSindex or the robot may have changed: all of it
@@ -189,10 +193,7 @@ bool PlannerRun::lane_entered(LaneArrays& a, int l) {
   t_last_new_ = a.t[l];
   a.t_last_new[l] = t_last_new_;
   if (last_visited_ < needed_) return false;
-  robot_.set_position(a.X[l], a.Y[l]);
-  t_ = a.t[l];
-  r_.steps = std::int64_t(a.steps[l]);
-  seg_step_ = int(a.seg_step[l]);
+  take_lane_progress(a, l);
   u_ = lane_state(a, l);
   trig_ = lane_trig(a, l);
   end(Status::ok);

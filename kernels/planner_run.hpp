@@ -71,6 +71,8 @@ class PlannerRun {
   // dt and checks every way the run can end. Returns true when it ended.
   [[gnu::always_inline]] inline bool after_move(double dt, SegmentKind kind);
   void end(Status s, const char* why = nullptr);
+  // The robot, clock, step and segment counts the fast path advanced in lane l.
+  void take_lane_progress(const LaneArrays& a, int l);
   // Lane l's Arnold state and its trig in this run's own labels.
   Vec3<double> lane_state(const LaneArrays& a, int l) const;
   Trig3<double> lane_trig(const LaneArrays& a, int l) const;
