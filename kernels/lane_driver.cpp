@@ -47,8 +47,9 @@ class LaneDriver final : public LaneSink {
     active_ = any_active();
   }
 
-  // Visits only the lanes the integrator flagged (it applied every other
-  // lane's step itself); idle lanes stay flagged and are skipped here.
+  // Visits only the lanes whose step entered a new cell (to mark it) and the
+  // lanes the integrator flagged (to redo their step in full); it applied
+  // every other lane's step itself. Idle lanes stay flagged and are skipped.
   bool post_step() override {
     bool refilled = false;
     // Steps the integrator applied into a new cell, then the flagged steps;
