@@ -48,6 +48,11 @@ class CoverageGrid {
     window_distinct_ = 0;
   }
   int window_distinct() const { return window_distinct_; }
+  // For the lane integrators, which mark the cells of a window-free run in
+  // place (LaneArrays::cells) and count them: the bytes (row-major, nx per
+  // row) and the count taken back.
+  std::uint8_t* cell_bytes() { return cells_.data(); }
+  void set_visited_cells(int n) { visited_ = n; }
   void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
   // Supercover: every cell the closed segment touches, including both side
   // cells where it passes exactly through a grid corner. Inline for the

@@ -24,7 +24,7 @@ struct LaneArrays {
   // step stays in its cell and triggers no end or segment check — the same
   // operations the scalar PlannerRun would do. Any other step sets its bit in `flagged` and is left to the
   // sink, which redoes it in full. A step into a neighbouring cell (fast = 2)
-  // is applied too and its bit set in `entered`: the sink marks the cell.
+  // is applied too, and its cell marked (see `cells`).
   alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
   alignas(64) double budget[max_lanes], stuck_time[max_lanes], t_last_new[max_lanes];
   alignas(64) double seg_step[max_lanes], niter[max_lanes], steps[max_lanes];
@@ -35,8 +35,13 @@ struct LaneArrays {
   // neighbouring cell across one edge (no map zoning, whose windows count
   // every cell touched: then only marking the entered cell is left).
   alignas(64) double fast[max_lanes];
+  // fast = 2: the integrator marks an entered cell itself in the run's grid
+  // (CoverageGrid's bytes, nx per row), counts it and stamps t_last_new.
+  unsigned char* cells[max_lanes];
+  int nx[max_lanes];
+  double visited[max_lanes], needed[max_lanes];
   unsigned flagged = 0;  // out: bit l set when the sink must handle lane l's step
-  unsigned entered = 0;  // out: bit l set when lane l's applied step entered a new cell
+  unsigned covered = 0;  // out: bit l set when lane l's applied step reached dc (the sink ends the run)
 };
 
 // Consumes each computed step (boundaries, grid, decisions, refill) and

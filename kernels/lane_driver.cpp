@@ -47,14 +47,14 @@ class LaneDriver final : public LaneSink {
     active_ = any_active();
   }
 
-  // Visits only the lanes whose step entered a new cell (to mark it) and the
+  // Visits only the lanes whose step reached dc (to end the run) and the
   // lanes the integrator flagged (to redo their step in full); it applied
   // every other lane's step itself. Idle lanes stay flagged and are skipped.
   bool post_step() override {
     bool refilled = false;
-    // Steps the integrator applied into a new cell, then the flagged steps;
+    // Steps the integrator applied that reached dc, then the flagged steps;
     // the two sets are disjoint.
-    for (unsigned m = a_.entered; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), true);
+    for (unsigned m = a_.covered; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), true);
     for (unsigned m = a_.flagged; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), false);
     if (refilled) active_ = any_active();
     return active_;
@@ -87,15 +87,19 @@ class LaneDriver final : public LaneSink {
     a_.t_last_new[l] = a_.lo_x[l] = a_.hi_x[l] = a_.lo_y[l] = a_.hi_y[l] = 0.0;
     a_.inv_cell[l] = 1.0;
     a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
+    a_.cells[l] = nullptr;
+    a_.nx[l] = 1;
+    a_.visited[l] = 0.0;
+    a_.needed[l] = 1.0;
   }
 
-  // Lane l's step for the sink (PlannerRun::lane_entered or lane_step); when
+  // Lane l's step for the sink (PlannerRun::lane_covered or lane_step); when
   // its run ends, the lane takes the next one. Returns true when it did.
-  bool handle(int l, bool entered) {
+  bool handle(int l, bool covered) {
     Slot& s = slots_[std::size_t(l)];
     if (!s.run) return false;
     try {
-      if (!(entered ? s.run->lane_entered(a_, l) : s.run->lane_step(a_, l))) return false;
+      if (!(covered ? s.run->lane_covered(a_, l) : s.run->lane_step(a_, l))) return false;
       complete(s);
     } catch (const std::exception& e) {
       record_error(results_[s.item], e.what());

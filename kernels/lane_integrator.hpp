@@ -21,7 +21,7 @@ inline void lane_store(double* p, V v) {
 }
 
 // The steps fast_path applied (lane o in bit 0), and among them those that
-// entered a neighbouring cell, which the sink must mark (LaneArrays::entered).
+// entered a neighbouring cell (to be marked: mark_entered).
 struct FastPathBits {
   unsigned applied, entered;
 };
@@ -71,6 +71,26 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   lane_store(a.seg_step + o, lane::select(applied, seg, seg - one));
   lane_store(a.steps + o, lane_load<V>(a.steps + o) + lane::select(applied, one, zero));
   return {lane::bits(applied), lane::bits(entered)};
+}
+
+// Marks the cells the `entered` lanes' applied steps entered, as
+// CoverageGrid::mark_cell and after_move would (a new cell counts and stamps
+// t_last_new); returns the lanes whose count reached dc. Scalar: a lane
+// enters a cell about once in 30 steps. A template on V only to keep each
+// kernel file's copy its own (tests/check_simd_symbols.sh).
+template <class V>
+inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
+  unsigned covered = 0;
+  for (; entered != 0; entered &= entered - 1) {
+    const int l = __builtin_ctz(entered);
+    unsigned char& c = a.cells[l][long(a.cell_j[l]) * a.nx[l] + long(a.cell_i[l])];
+    if (c != 0) continue;  // visited already (no blocked cells: fast = 2 has no obstacles)
+    c = 1;
+    a.t_last_new[l] = a.t[l];
+    a.visited[l] += 1.0;
+    if (a.visited[l] >= a.needed[l]) covered |= 1u << l;
+  }
+  return covered;
 }
 
 // One vector's inputs to a step, from the arrays at lane offset o.
@@ -144,7 +164,7 @@ template <class V, int N, bool Staged = false>
       }
     }
     a.flagged = ~applied & all_lanes;
-    a.entered = entered;
+    a.covered = mark_entered<V>(a, entered);
   } while (sink.post_step());
 }
 

@@ -153,6 +153,10 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.max_j[l] = grid_.ny() - 1;
   a.cell_i[l] = grid_.cell_x(robot_.x());
   a.cell_j[l] = grid_.cell_y(robot_.y());
+  a.cells[l] = grid_.cell_bytes();
+  a.nx[l] = grid_.nx();
+  a.visited[l] = grid_.visited_cells();
+  a.needed[l] = double(needed_);
 }
 
 void PlannerRun::take_lane_progress(const LaneArrays& a, int l) {
@@ -160,6 +164,9 @@ void PlannerRun::take_lane_progress(const LaneArrays& a, int l) {
   t_ = a.t[l];
   r_.steps = std::int64_t(a.steps[l]);
   seg_step_ = int(a.seg_step[l]);
+  grid_.set_visited_cells(int(a.visited[l]));
+  last_visited_ = grid_.visited_cells();
+  t_last_new_ = a.t_last_new[l];
 }
 
 bool PlannerRun::lane_step(LaneArrays& a, int l) {
@@ -176,27 +183,16 @@ bool PlannerRun::lane_step(LaneArrays& a, int l) {
   a.steps[l] = double(r_.steps);
   a.seg_step[l] = seg_step_;
   a.t_last_new[l] = t_last_new_;
+  a.visited[l] = grid_.visited_cells();
   a.cell_i[l] = grid_.cell_x(robot_.x());
   a.cell_j[l] = grid_.cell_y(robot_.y());
   return false;
 }
 
-bool PlannerRun::lane_entered(LaneArrays& a, int l) {
-  // The reference's mark_segment marks the cell left (visited already: the
-  // robot is in it) and the one entered; without map zoning no window counts.
-  grid_.mark_cell(int(a.cell_i[l]), int(a.cell_j[l]));
-  if (grid_.visited_cells() == last_visited_) return false;
-  // after_move's consequences of a new cell; the integrator checked the rest
-  // (the clock, the budget, the stuck time against the older t_last_new, which
-  // only flags more steps, and the segment).
-  last_visited_ = grid_.visited_cells();
-  t_last_new_ = a.t[l];
-  a.t_last_new[l] = t_last_new_;
-  if (last_visited_ < needed_) return false;
+bool PlannerRun::lane_covered(LaneArrays& a, int l) {
   take_lane_progress(a, l);
   u_ = lane_state(a, l);
-  trig_ = lane_trig(a, l);
-  end(Status::ok);
+  end(Status::ok);  // after_move's first check that holds (the integrator checked the position)
   return true;
 }
 

@@ -36,10 +36,9 @@ class PlannerRun {
   // index switching, MapZoning transits, scalar). Takes over the progress the
   // fast path made since the last call and hands its own back.
   bool lane_step(LaneArrays& a, int l);
-  // The integrator applied lane l's step into a neighbouring cell (see
-  // LaneArrays::entered): marks that cell, with what follows (a new cell's
-  // time, the end at dc). Returns true when the run ended.
-  bool lane_entered(LaneArrays& a, int l);
+  // The integrator applied lane l's step and the new cell it marked reached
+  // dc (LaneArrays::covered): ends the run.
+  bool lane_covered(LaneArrays& a, int l);
   bool ended() const { return ended_; }
   void finish();
 
@@ -71,7 +70,7 @@ class PlannerRun {
   // dt and checks every way the run can end. Returns true when it ended.
   [[gnu::always_inline]] inline bool after_move(double dt, SegmentKind kind);
   void end(Status s, const char* why = nullptr);
-  // The robot, clock, step and segment counts the fast path advanced in lane l.
+  // The robot, clock, counts, cells and new-cell time the integrator advanced in lane l.
   void take_lane_progress(const LaneArrays& a, int l);
   // Lane l's Arnold state and its trig in this run's own labels.
   Vec3<double> lane_state(const LaneArrays& a, int l) const;
