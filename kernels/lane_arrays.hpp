@@ -44,8 +44,9 @@ struct LaneArrays {
   unsigned covered = 0;  // out: bit l set when lane l's applied step reached dc (the sink ends the run)
 };
 
-// Consumes each computed step (boundaries, grid, decisions, refill) and
-// reports whether any lane is still active. Implemented in baseline code.
+// Takes the steps the integrator leaves to it (flagged, covered: boundaries,
+// grid, decisions, ends, refill) after any step that leaves one, and reports
+// whether any lane is still active. Implemented in baseline code.
 class LaneSink {
  public:
   virtual ~LaneSink();

@@ -114,20 +114,38 @@ inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
           lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
 }
 
-// flatten: the step and the fast path inline into one loop body, so the
-// vectors stay in registers instead of passing through memory.
+template <class V>
+inline void store_step(LaneArrays& a, int o, const Rk4Step<V>& s) {
+  lane_store(a.x + o, s.u.x);
+  lane_store(a.y + o, s.u.y);
+  lane_store(a.z + o, s.u.z);
+  lane_store(a.sx + o, s.t.sx);
+  lane_store(a.cx + o, s.t.cx);
+  lane_store(a.sy + o, s.t.sy);
+  lane_store(a.cy + o, s.t.cy);
+  lane_store(a.sz + o, s.t.sz);
+  lane_store(a.cz + o, s.t.cz);
+  lane_store(a.dX + o, s.dX);
+  lane_store(a.dY + o, s.dY);
+}
+
+// The lanes one kernel keeps in flight: N vectors of V (a.lanes, see
+// lane_count). Their Arnold state stays in registers from step to step while
+// no lane needs the sink; before the sink runs, every lane's state goes to
+// the arrays, and after it comes back from them (the sink may rewrite any).
+// flatten: the step and the fast path inline into one loop body.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
-  const unsigned all_lanes = (1u << a.lanes) - 1u;
-  do {
-    unsigned applied = 0, entered = 0;
-    for (int g = 0; g < a.lanes; g += w * N) {
+  constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
+  for (;;) {
+    StepInput<V> in[N];
+    for (int k = 0; k < N; ++k) in[k] = load_step_input<V>(a, k * w);
+    unsigned flagged = 0, covered = 0;
+    do {
       Rk4Step<V> s[N];
       if constexpr (Staged && N == 2) {
-        // The two vectors' steps stage by stage in turn (rk4_step2).
-        const StepInput<V> in[2] = {load_step_input<V>(a, g), load_step_input<V>(a, g + w)};
         Rk4Work<V, HeadingZ> wk[2];
         for (int k = 0; k < 2; ++k) {
           wk[k].u = in[k].u;
@@ -140,32 +158,26 @@ template <class V, int N, bool Staged = false>
           rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].c, in[1].c, in[0].h, in[1].h, in[0].h_pos,
                            in[1].h_pos, s[0], s[1]);
       } else {
-        for (int k = 0; k < N; ++k) {
-          const StepInput<V> in = load_step_input<V>(a, g + k * w);
-          s[k] = rk4_step(in.u, in.t, in.c, HeadingZ{}, in.h, in.h_pos, in.small);
-        }
+        for (int k = 0; k < N; ++k)
+          s[k] = rk4_step(in[k].u, in[k].t, in[k].c, HeadingZ{}, in[k].h, in[k].h_pos, in[k].small);
       }
+      unsigned applied = 0, entered = 0;
       for (int k = 0; k < N; ++k) {
-        const int o = g + k * w;
-        lane_store(a.x + o, s[k].u.x);
-        lane_store(a.y + o, s[k].u.y);
-        lane_store(a.z + o, s[k].u.z);
-        lane_store(a.sx + o, s[k].t.sx);
-        lane_store(a.cx + o, s[k].t.cx);
-        lane_store(a.sy + o, s[k].t.sy);
-        lane_store(a.cy + o, s[k].t.cy);
-        lane_store(a.sz + o, s[k].t.sz);
-        lane_store(a.cz + o, s[k].t.cz);
-        lane_store(a.dX + o, s[k].dX);
-        lane_store(a.dY + o, s[k].dY);
-        const FastPathBits b = fast_path<V>(a, o, s[k]);
-        applied |= b.applied << o;
-        entered |= b.entered << o;
+        const FastPathBits b = fast_path<V>(a, k * w, s[k]);
+        applied |= b.applied << (k * w);
+        entered |= b.entered << (k * w);
+        in[k].u = s[k].u;
+        in[k].t = s[k].t;
       }
-    }
-    a.flagged = ~applied & all_lanes;
-    a.covered = mark_entered<V>(a, entered);
-  } while (sink.post_step());
+      flagged = ~applied & all_lanes;
+      covered = mark_entered<V>(a, entered);
+      if ((flagged | covered) != 0)
+        for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
+    } while ((flagged | covered) == 0);
+    a.flagged = flagged;
+    a.covered = covered;
+    if (!sink.post_step()) return;
+  }
 }
 
 }  // namespace chaosweep
