@@ -29,9 +29,11 @@ struct FastPathBits {
 // The step's common case, vectorised (see LaneArrays). Mirrors
 // RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
 // operation for operation, so a lane's result never depends on the path.
+// `passes`: the steps taken since the arrays' step and segment counts were
+// last brought up to date (count_steps), this one included.
 template <class V>
-inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
-  const V zero = lane::splat<V>(0.0), one = lane::splat<V>(1.0);
+inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passes) {
+  const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
   // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a step
   // that needs more than one is flagged below (still outside the band).
@@ -50,7 +52,7 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   V ci = lane::trunc(X1 * inv), cj = lane::trunc(Y1 * inv);
   ci = lane::select(ci < mi, ci, mi);
   cj = lane::select(cj < mj, cj, mj);
-  const V seg = lane_load<V>(a.seg_step + o) + one;
+  const V seg = lane_load<V>(a.seg_step + o) + passes;
   const V fast = lane_load<V>(a.fast + o), cell_i = lane_load<V>(a.cell_i + o), cell_j = lane_load<V>(a.cell_j + o);
   const auto inside = (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
   const auto ok = inside & (fast >= one) & (t1 < lane_load<V>(a.budget + o)) &
@@ -68,8 +70,6 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s) {
   lane_store(a.t + o, lane::select(applied, t1, t));
   lane_store(a.cell_i + o, lane::select(applied, ci, cell_i));
   lane_store(a.cell_j + o, lane::select(applied, cj, cell_j));
-  lane_store(a.seg_step + o, lane::select(applied, seg, seg - one));
-  lane_store(a.steps + o, lane_load<V>(a.steps + o) + lane::select(applied, one, zero));
   return {lane::bits(applied), lane::bits(entered)};
 }
 
@@ -114,6 +114,18 @@ inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
           lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
 }
 
+// Brings the step and segment counts up to date after `passes` steps of
+// which every lane took all but the last, and the lanes in `applied` that
+// one too (a flagged lane's step is the sink's to count).
+template <class V>
+inline void count_steps(LaneArrays& a, int passes, unsigned applied) {
+  for (int l = 0; l < a.lanes; ++l) {
+    const double taken = passes - ((applied >> l) & 1u ? 0 : 1);
+    a.steps[l] += taken;
+    a.seg_step[l] += taken;
+  }
+}
+
 template <class V>
 inline void store_step(LaneArrays& a, int o, const Rk4Step<V>& s) {
   lane_store(a.x + o, s.u.x);
@@ -142,8 +154,10 @@ template <class V, int N, bool Staged = false>
   for (;;) {
     StepInput<V> in[N];
     for (int k = 0; k < N; ++k) in[k] = load_step_input<V>(a, k * w);
-    unsigned flagged = 0, covered = 0;
+    unsigned flagged = 0, covered = 0, applied = 0;
+    int passes = 0;
     do {
+      ++passes;
       Rk4Step<V> s[N];
       if constexpr (Staged && N == 2) {
         Rk4Work<V, HeadingZ> wk[2];
@@ -161,9 +175,10 @@ template <class V, int N, bool Staged = false>
         for (int k = 0; k < N; ++k)
           s[k] = rk4_step(in[k].u, in[k].t, in[k].c, HeadingZ{}, in[k].h, in[k].h_pos, in[k].small);
       }
-      unsigned applied = 0, entered = 0;
+      unsigned entered = 0;
+      applied = 0;
       for (int k = 0; k < N; ++k) {
-        const FastPathBits b = fast_path<V>(a, k * w, s[k]);
+        const FastPathBits b = fast_path<V>(a, k * w, s[k], lane::splat<V>(double(passes)));
         applied |= b.applied << (k * w);
         entered |= b.entered << (k * w);
         in[k].u = s[k].u;
@@ -174,6 +189,7 @@ template <class V, int N, bool Staged = false>
       if ((flagged | covered) != 0)
         for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
     } while ((flagged | covered) == 0);
+    count_steps<V>(a, passes, applied);
     a.flagged = flagged;
     a.covered = covered;
     if (!sink.post_step()) return;
