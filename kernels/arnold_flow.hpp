@@ -228,10 +228,23 @@ struct Rk4Work {
   T c1, s1, c2, s2;
 };
 
-template <bool AllSmall, class T, class H>
-inline void rk4_stage1(Rk4Work<T, H>& w, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, T h) {
+// A step's constants, fixed for a run: the coefficients in units of h/2
+// (K = (h/2) k) and a sixth of the robot's distance per step.
+template <class T>
+struct StepScale {
+  ArnoldCoeffs<T> kh;
+  T pos6;
+};
+
+template <class T>
+inline StepScale<T> step_scale(const ArnoldCoeffs<T>& k, T h, T h_pos) {
   const T half = h * lane::splat<T>(0.5);
-  w.kh = {half * k.A, half * k.B, half * k.C};
+  return {{half * k.A, half * k.B, half * k.C}, h_pos * lane::splat<T>(1.0 / 6.0)};
+}
+
+template <bool AllSmall, class T, class H>
+inline void rk4_stage1(Rk4Work<T, H>& w, const Trig3<T>& t1, const ArnoldCoeffs<T>& kh) {
+  w.kh = kh;
   w.K1 = arnold_rhs(t1, w.kh);
   w.c1 = heading_cos(t1, w.hs);
   w.s1 = heading_sin(t1, w.hs);
@@ -258,7 +271,7 @@ inline void rk4_stage3(Rk4Work<T, H>& w) {
 }
 
 template <bool AllSmall, class T, class H>
-inline Rk4Step<T> rk4_stage4(Rk4Work<T, H>& w, T h_pos) {
+inline Rk4Step<T> rk4_stage4(Rk4Work<T, H>& w, T pos6) {
   using lane::fma;
   const T two = lane::splat<T>(2.0);
   const Vec3<T> K4 = arnold_rhs(w.t, w.kh);
@@ -277,7 +290,6 @@ inline Rk4Step<T> rk4_stage4(Rk4Work<T, H>& w, T h_pos) {
   out.u.z = wrap_pi(fma(third, S.z, u.z));
   const Vec3<T> d{fma(third, S.x, -K33.x), fma(third, S.y, -K33.y), fma(third, S.z, -K33.z)};
   out.t = trig3_stage_as<AllSmall, ShiftForm::carry>(w.t, d, out.u, w.small);
-  const T pos6 = h_pos * lane::splat<T>(1.0 / 6.0);
   out.dX = pos6 * fma(two, w.c2, c14);
   out.dY = pos6 * fma(two, w.s2, s14);
   return out;
@@ -296,18 +308,25 @@ inline Rk4Step<T> rk4_stage4(Rk4Work<T, H>& w, T h_pos) {
 // u + 2 K3 (doubling is exact) with no further products. Each stage's trig is
 // reduced at once to what later stages need (its K and heading), and stages
 // 1+4 and 2+3 are summed as they come: this keeps few vectors live. The
-// operations are the same in every width.
+// operations are the same in every width. The lanes keep each run's
+// step_scale (bit for bit the same numbers) and call the second form.
 template <class T, class H>
-inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, const H& hs, T h,
-                           T h_pos, decltype(T() < T()) small) {
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const StepScale<T>& sc, const H& hs,
+                           decltype(T() < T()) small) {
   Rk4Work<T, H> w;
   w.u = u;
   w.hs = hs;
   w.small = small;
-  rk4_stage1<false>(w, t1, k, h);
+  rk4_stage1<false>(w, t1, sc.kh);
   rk4_stage2<false>(w);
   rk4_stage3<false>(w);
-  return rk4_stage4<false>(w, h_pos);
+  return rk4_stage4<false>(w, sc.pos6);
+}
+
+template <class T, class H>
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, const H& hs, T h,
+                           T h_pos, decltype(T() < T()) small) {
+  return rk4_step<T, H>(u, t1, step_scale(k, h, h_pos), hs, small);
 }
 
 // Two independent steps (w[i] holding u, hs and small, as rk4_step sets
@@ -316,16 +335,15 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoe
 // small-shift mode.
 template <bool AllSmall, class T, class H>
 inline void rk4_step2(Rk4Work<T, H>& a, Rk4Work<T, H>& b, const Trig3<T>& ta, const Trig3<T>& tb,
-                      const ArnoldCoeffs<T>& ka, const ArnoldCoeffs<T>& kb, T ha, T hb, T hpa, T hpb,
-                      Rk4Step<T>& oa, Rk4Step<T>& ob) {
-  rk4_stage1<AllSmall>(a, ta, ka, ha);
-  rk4_stage1<AllSmall>(b, tb, kb, hb);
+                      const StepScale<T>& sa, const StepScale<T>& sb, Rk4Step<T>& oa, Rk4Step<T>& ob) {
+  rk4_stage1<AllSmall>(a, ta, sa.kh);
+  rk4_stage1<AllSmall>(b, tb, sb.kh);
   rk4_stage2<AllSmall>(a);
   rk4_stage2<AllSmall>(b);
   rk4_stage3<AllSmall>(a);
   rk4_stage3<AllSmall>(b);
-  oa = rk4_stage4<AllSmall>(a, hpa);
-  ob = rk4_stage4<AllSmall>(b, hpb);
+  oa = rk4_stage4<AllSmall>(a, sa.pos6);
+  ob = rk4_stage4<AllSmall>(b, sb.pos6);
 }
 
 // A step from u alone (no carried trig), as at a run's start.

@@ -13,8 +13,8 @@ struct LaneArrays {
   alignas(64) double x[max_lanes], y[max_lanes], z[max_lanes];
   // Their sines and cosines, carried from step to step (rk4_step's t1).
   alignas(64) double sx[max_lanes], cx[max_lanes], sy[max_lanes], cy[max_lanes], sz[max_lanes], cz[max_lanes];
-  alignas(64) double A[max_lanes], B[max_lanes], C[max_lanes];
-  alignas(64) double h[max_lanes], h_pos[max_lanes];
+  // The run's step_scale: (h/2) A, (h/2) B, (h/2) C and h_pos / 6.
+  alignas(64) double kA[max_lanes], kB[max_lanes], kC[max_lanes], pos6[max_lanes];
   alignas(64) double small[max_lanes];  // 1: small-shift mode (arnold_flow.hpp)
   // The step's robot displacement, written by the integrator.
   alignas(64) double dX[max_lanes], dY[max_lanes];

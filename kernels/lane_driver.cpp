@@ -77,7 +77,7 @@ class LaneDriver final : public LaneSink {
 
   // Idle lane: harmless numbers (a frozen, flagged lane), never read back.
   void idle_lane(int l) {
-    a_.x[l] = a_.y[l] = a_.z[l] = a_.A[l] = a_.B[l] = a_.C[l] = a_.h[l] = a_.h_pos[l] = 0.0;
+    a_.x[l] = a_.y[l] = a_.z[l] = a_.kA[l] = a_.kB[l] = a_.kC[l] = a_.pos6[l] = 0.0;
     a_.sx[l] = a_.sy[l] = a_.sz[l] = 0.0;
     a_.cx[l] = a_.cy[l] = a_.cz[l] = 1.0;
     a_.small[l] = 1.0;

@@ -98,8 +98,7 @@ template <class V>
 struct StepInput {
   Vec3<V> u;
   Trig3<V> t;
-  ArnoldCoeffs<V> c;
-  V h, h_pos;
+  StepScale<V> sc;
   decltype(V() < V()) small;
 };
 
@@ -108,9 +107,7 @@ inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
   return {{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)},
           {lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o), lane_load<V>(a.cy + o),
            lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)},
-          {lane_load<V>(a.A + o), lane_load<V>(a.B + o), lane_load<V>(a.C + o)},
-          lane_load<V>(a.h + o),
-          lane_load<V>(a.h_pos + o),
+          {{lane_load<V>(a.kA + o), lane_load<V>(a.kB + o), lane_load<V>(a.kC + o)}, lane_load<V>(a.pos6 + o)},
           lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
 }
 
@@ -166,14 +163,12 @@ template <class V, int N, bool Staged = false>
           wk[k].small = in[k].small;
         }
         if (lane::all(wk[0].small & wk[1].small))
-          rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].c, in[1].c, in[0].h, in[1].h, in[0].h_pos,
-                          in[1].h_pos, s[0], s[1]);
+          rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
         else
-          rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].c, in[1].c, in[0].h, in[1].h, in[0].h_pos,
-                           in[1].h_pos, s[0], s[1]);
+          rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
       } else {
         for (int k = 0; k < N; ++k)
-          s[k] = rk4_step(in[k].u, in[k].t, in[k].c, HeadingZ{}, in[k].h, in[k].h_pos, in[k].small);
+          s[k] = rk4_step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
       }
       unsigned entered = 0;
       applied = 0;

@@ -115,7 +115,7 @@ Trig3<double> PlannerRun::lane_trig(const LaneArrays& a, int l) const {
 void PlannerRun::write_lane(LaneArrays& a, int l) const {
   const Vec3<double> u = to_lane(u_, ds_);
   const Trig3<double> t = to_lane(trig_, ds_);
-  const ArnoldCoeffs<double> k = to_lane(k_, ds_);
+  const StepScale<double> sc = step_scale(to_lane(k_, ds_), h_, p_.f * p_.v * h_);
   a.x[l] = u.x;
   a.y[l] = u.y;
   a.z[l] = u.z;
@@ -125,11 +125,10 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.cy[l] = t.cy;
   a.sz[l] = t.sz;
   a.cz[l] = t.cz;
-  a.A[l] = k.A;
-  a.B[l] = k.B;
-  a.C[l] = k.C;
-  a.h[l] = h_;
-  a.h_pos[l] = p_.f * p_.v * h_;
+  a.kA[l] = sc.kh.A;
+  a.kB[l] = sc.kh.B;
+  a.kC[l] = sc.kh.C;
+  a.pos6[l] = sc.pos6;
   a.small[l] = small_shift_mode(h_, p_.A, p_.B, p_.C) ? 1.0 : 0.0;
   a.X[l] = robot_.x();
   a.Y[l] = robot_.y();
