@@ -19,13 +19,16 @@ struct LaneArrays {
   // The step's robot displacement, written by the integrator.
   alignas(64) double dX[max_lanes], dY[max_lanes];
 
-  // Fast path (mirror boundary, no obstacles): the integrator also moves the
-  // robot (with Eq. 7's single reflections) and advances the clock when the
+  // Fast path (no obstacles): the integrator also moves the robot (Eq. 7 or
+  // the fold) and advances the clock when the
   // step stays in its cell and triggers no end or segment check — the same
   // operations the scalar PlannerRun would do. Any other step sets its bit in `flagged` and is left to the
   // sink, which redoes it in full. A step into a neighbouring cell (fast = 2)
   // is applied too, and its cell marked (see `cells`).
   alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
+  // fold = 1: the fold boundary, the robot at the fold of its unfolded
+  // position (UX, UY) into the band; 0: the mirror, (X, Y) reflected itself.
+  alignas(64) double fold[max_lanes], UX[max_lanes], UY[max_lanes];
   alignas(64) double budget[max_lanes], stuck_time[max_lanes], t_last_new[max_lanes];
   alignas(64) double seg_step[max_lanes], niter[max_lanes], steps[max_lanes];
   alignas(64) double lo_x[max_lanes], hi_x[max_lanes], lo_y[max_lanes], hi_y[max_lanes];

@@ -81,7 +81,7 @@ class LaneDriver final : public LaneSink {
     a_.sx[l] = a_.sy[l] = a_.sz[l] = 0.0;
     a_.cx[l] = a_.cy[l] = a_.cz[l] = 1.0;
     a_.small[l] = 1.0;
-    a_.fast[l] = 0.0;
+    a_.fast[l] = a_.fold[l] = a_.UX[l] = a_.UY[l] = 0.0;
     a_.X[l] = a_.Y[l] = a_.t[l] = a_.fh[l] = a_.steps[l] = a_.seg_step[l] = 0.0;
     a_.budget[l] = a_.stuck_time[l] = a_.niter[l] = 1.0;
     a_.t_last_new[l] = a_.lo_x[l] = a_.hi_x[l] = a_.lo_y[l] = a_.hi_y[l] = 0.0;

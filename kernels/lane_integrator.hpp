@@ -4,6 +4,7 @@
 // reference, see arnold_flow.hpp), store, let the sink handle the rest.
 // Include only from lane_kernel_<target>.cpp.
 #include "arnold_flow.hpp"
+#include "boundary.hpp"
 #include "lane_arrays.hpp"
 
 namespace chaosweep {
@@ -30,20 +31,33 @@ struct FastPathBits {
 // RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
 // operation for operation, so a lane's result never depends on the path.
 // `passes`: the steps taken since the arrays' step and segment counts were
-// last brought up to date (count_steps), this one included.
-template <class V>
+// last brought up to date (count_steps), this one included. AnyFold: some
+// lane of the kernel has the fold boundary (else the mirror's short form).
+template <class V, bool AnyFold>
 inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passes) {
   const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
-  // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a step
-  // that needs more than one is flagged below (still outside the band).
   const V lo_x = lane_load<V>(a.lo_x + o), hi_x = lane_load<V>(a.hi_x + o);
   const V lo_y = lane_load<V>(a.lo_y + o), hi_y = lane_load<V>(a.hi_y + o);
-  V X1 = X + s.dX, Y1 = Y + s.dY;
-  X1 = lane::select(X1 < lo_x, (lo_x + lo_x) - X1, X1);
-  X1 = lane::select(X1 > hi_x, (hi_x + hi_x) - X1, X1);
-  Y1 = lane::select(Y1 < lo_y, (lo_y + lo_y) - Y1, Y1);
-  Y1 = lane::select(Y1 > hi_y, (hi_y + hi_y) - Y1, Y1);
+  V X1 = X + s.dX, Y1 = Y + s.dY, UX{}, UY{}, UX1{}, UY1{};
+  if constexpr (!AnyFold) {
+    // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a
+    // step that needs more than one is flagged below (still outside the band).
+    X1 = lane::select(X1 < lo_x, (lo_x + lo_x) - X1, X1);
+    X1 = lane::select(X1 > hi_x, (hi_x + hi_x) - X1, X1);
+    Y1 = lane::select(Y1 < lo_y, (lo_y + lo_y) - Y1, Y1);
+    Y1 = lane::select(Y1 > hi_y, (hi_y + hi_y) - Y1, Y1);
+  } else {
+    // RobotMotion::move in full: fold lanes fold their unfolded position,
+    // mirror lanes their own (mirror_eq7 is the fold of the band).
+    const auto is_fold = lane_load<V>(a.fold + o) == one;
+    UX = lane_load<V>(a.UX + o);
+    UY = lane_load<V>(a.UY + o);
+    UX1 = UX + s.dX;
+    UY1 = UY + s.dY;
+    X1 = triangle_fold(lane::select(is_fold, UX1, X1), lo_x, hi_x);
+    Y1 = triangle_fold(lane::select(is_fold, UY1, Y1), lo_y, hi_y);
+  }
   const V t1 = t + lane_load<V>(a.fh + o);
   const V inv = lane_load<V>(a.inv_cell + o);
   // cell_x's clamp from below is a no-op for the steps applied: they end
@@ -68,6 +82,10 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passe
   lane_store(a.X + o, lane::select(applied, X1, X));
   lane_store(a.Y + o, lane::select(applied, Y1, Y));
   lane_store(a.t + o, lane::select(applied, t1, t));
+  if constexpr (AnyFold) {
+    lane_store(a.UX + o, lane::select(applied, UX1, UX));
+    lane_store(a.UY + o, lane::select(applied, UY1, UY));
+  }
   lane_store(a.cell_i + o, lane::select(applied, ci, cell_i));
   lane_store(a.cell_j + o, lane::select(applied, cj, cell_j));
   return {lane::bits(applied), lane::bits(entered)};
@@ -138,55 +156,72 @@ inline void store_step(LaneArrays& a, int o, const Rk4Step<V>& s) {
   lane_store(a.dY + o, s.dY);
 }
 
+// What a run of steps between two calls of the sink leaves it.
+struct StepsDone {
+  unsigned flagged = 0, covered = 0, applied = 0;
+  int passes = 0;
+};
+
+// Steps the lanes from the arrays' state, keeping it in registers, until a
+// step leaves the sink work; stores every lane's state after that step.
+template <class V, int N, bool Staged, bool AnyFold>
+inline StepsDone steps_until_sink(LaneArrays& a) {
+  constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
+  constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
+  StepInput<V> in[N];
+  for (int k = 0; k < N; ++k) in[k] = load_step_input<V>(a, k * w);
+  StepsDone d;
+  do {
+    ++d.passes;
+    Rk4Step<V> s[N];
+    if constexpr (Staged && N == 2) {
+      Rk4Work<V, HeadingZ> wk[2];
+      for (int k = 0; k < 2; ++k) {
+        wk[k].u = in[k].u;
+        wk[k].small = in[k].small;
+      }
+      if (lane::all(wk[0].small & wk[1].small))
+        rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
+      else
+        rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
+    } else {
+      for (int k = 0; k < N; ++k)
+        s[k] = rk4_step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
+    }
+    unsigned entered = 0;
+    d.applied = 0;
+    for (int k = 0; k < N; ++k) {
+      const FastPathBits b = fast_path<V, AnyFold>(a, k * w, s[k], lane::splat<V>(double(d.passes)));
+      d.applied |= b.applied << (k * w);
+      entered |= b.entered << (k * w);
+      in[k].u = s[k].u;
+      in[k].t = s[k].t;
+    }
+    d.flagged = ~d.applied & all_lanes;
+    d.covered = mark_entered<V>(a, entered);
+    if ((d.flagged | d.covered) != 0)
+      for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
+  } while ((d.flagged | d.covered) == 0);
+  return d;
+}
+
 // The lanes one kernel keeps in flight: N vectors of V (a.lanes, see
 // lane_count). Their Arnold state stays in registers from step to step while
 // no lane needs the sink; before the sink runs, every lane's state goes to
 // the arrays, and after it comes back from them (the sink may rewrite any).
-// flatten: the step and the fast path inline into one loop body.
+// flatten: the step and the fast path inline into one loop body, one for
+// lanes that are all under the mirror boundary and one for the others.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
-  constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
-  constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
   for (;;) {
-    StepInput<V> in[N];
-    for (int k = 0; k < N; ++k) in[k] = load_step_input<V>(a, k * w);
-    unsigned flagged = 0, covered = 0, applied = 0;
-    int passes = 0;
-    do {
-      ++passes;
-      Rk4Step<V> s[N];
-      if constexpr (Staged && N == 2) {
-        Rk4Work<V, HeadingZ> wk[2];
-        for (int k = 0; k < 2; ++k) {
-          wk[k].u = in[k].u;
-          wk[k].small = in[k].small;
-        }
-        if (lane::all(wk[0].small & wk[1].small))
-          rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
-        else
-          rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
-      } else {
-        for (int k = 0; k < N; ++k)
-          s[k] = rk4_step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
-      }
-      unsigned entered = 0;
-      applied = 0;
-      for (int k = 0; k < N; ++k) {
-        const FastPathBits b = fast_path<V>(a, k * w, s[k], lane::splat<V>(double(passes)));
-        applied |= b.applied << (k * w);
-        entered |= b.entered << (k * w);
-        in[k].u = s[k].u;
-        in[k].t = s[k].t;
-      }
-      flagged = ~applied & all_lanes;
-      covered = mark_entered<V>(a, entered);
-      if ((flagged | covered) != 0)
-        for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
-    } while ((flagged | covered) == 0);
-    count_steps<V>(a, passes, applied);
-    a.flagged = flagged;
-    a.covered = covered;
+    bool any_fold = false;
+    for (int l = 0; l < a.lanes; ++l) any_fold |= a.fold[l] != 0.0;
+    const StepsDone d =
+        any_fold ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
+    count_steps<V>(a, d.passes, d.applied);
+    a.flagged = d.flagged;
+    a.covered = d.covered;
     if (!sink.post_step()) return;
   }
 }

@@ -140,13 +140,18 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.steps[l] = double(r_.steps);
   a.seg_step[l] = seg_step_;
   a.niter[l] = p_.niter;
-  const bool fast = p_.boundary == Boundary::mirror && env_.obstacles.empty() && trace_ == nullptr;
+  const bool fast = env_.obstacles.empty() && trace_ == nullptr;
   a.fast[l] = !fast ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
-  // The band mirror_eq7 keeps: triangle_fold(u, 0 + fo, lx - fo).
-  a.lo_x[l] = 0.0 + p_.fo;
-  a.hi_x[l] = env_.lx - p_.fo;
-  a.lo_y[l] = 0.0 + p_.fo;
-  a.hi_y[l] = env_.ly - p_.fo;
+  // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
+  // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
+  const bool fold = p_.boundary == Boundary::fold;
+  a.fold[l] = fold ? 1.0 : 0.0;
+  a.UX[l] = robot_.unfolded_x();
+  a.UY[l] = robot_.unfolded_y();
+  a.lo_x[l] = fold ? 0.0 : 0.0 + p_.fo;
+  a.hi_x[l] = fold ? env_.lx : env_.lx - p_.fo;
+  a.lo_y[l] = fold ? 0.0 : 0.0 + p_.fo;
+  a.hi_y[l] = fold ? env_.ly : env_.ly - p_.fo;
   a.inv_cell[l] = grid_.inv_cell_size();
   a.max_i[l] = grid_.nx() - 1;
   a.max_j[l] = grid_.ny() - 1;
@@ -159,7 +164,7 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
 }
 
 void PlannerRun::take_lane_progress(const LaneArrays& a, int l) {
-  robot_.set_position(a.X[l], a.Y[l]);
+  robot_.set_position(a.X[l], a.Y[l], a.UX[l], a.UY[l]);
   t_ = a.t[l];
   r_.steps = std::int64_t(a.steps[l]);
   seg_step_ = int(a.seg_step[l]);
@@ -178,6 +183,8 @@ bool PlannerRun::lane_step(LaneArrays& a, int l) {
   }
   a.X[l] = robot_.x();
   a.Y[l] = robot_.y();
+  a.UX[l] = robot_.unfolded_x();
+  a.UY[l] = robot_.unfolded_y();
   a.t[l] = t_;
   a.steps[l] = double(r_.steps);
   a.seg_step[l] = seg_step_;

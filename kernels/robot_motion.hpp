@@ -21,11 +21,15 @@ class RobotMotion {
 
   double x() const { return x_; }
   double y() const { return y_; }
-  // Position after steps the lane fast path applied (mirror boundary only:
-  // the unfolded position of the fold boundary is not touched).
-  void set_position(double x, double y) {
+  double unfolded_x() const { return ux_; }
+  double unfolded_y() const { return uy_; }
+  // Position after steps the lane fast path applied, with the fold
+  // boundary's unfolded position (the mirror boundary does not use it).
+  void set_position(double x, double y, double ux, double uy) {
     x_ = x;
     y_ = y;
+    ux_ = ux;
+    uy_ = uy;
   }
 
   // Puts the robot at (x, y) (a transit point, already kept clear of walls

@@ -24,6 +24,10 @@ template <class M>
 inline v4d select(M m, v4d a, v4d b) {
   return m ? a : b;
 }
+inline v4d floor(v4d x) {
+  const v4d r = round_even(x);
+  return select(r > x, r - 1.0, r);
+}
 inline v4l to_int(v4d x) { return __builtin_convertvector(x, v4l); }
 // Sign flips as XOR of bit 1 of q (and of q + 1) moved to the sign bit.
 inline void quadrant(v4d j, v4d sin_r, v4d cos_r, v4d& s, v4d& c) {
@@ -53,6 +57,10 @@ inline v8d round_even(v8d x) {
 template <class M>
 inline v8d select(M m, v8d a, v8d b) {
   return m ? a : b;
+}
+inline v8d floor(v8d x) {
+  const v8d r = round_even(x);
+  return select(r > x, r - 1.0, r);
 }
 inline v8l to_int(v8d x) { return __builtin_convertvector(x, v8l); }
 inline void quadrant(v8d j, v8d sin_r, v8d cos_r, v8d& s, v8d& c) {
