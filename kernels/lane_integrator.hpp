@@ -1,8 +1,10 @@
 #pragma once
 // The lane loop shared by every width: load N interleaved vectors of W lanes
-// from the arrays, take one RK4 step (the same arithmetic as the scalar
-// reference, see arnold_flow.hpp), store, let the sink handle the rest.
-// Include only from lane_kernel_<target>.cpp.
+// from the arrays, take RK4 steps (the same arithmetic as the scalar
+// reference, see arnold_flow.hpp) with the state in registers, apply each
+// step's common case (fast_path, mark_entered) until a step leaves the sink
+// work, store, let the sink handle it. Include only from
+// lane_kernel_<target>.cpp.
 #include "arnold_flow.hpp"
 #include "boundary.hpp"
 #include "lane_arrays.hpp"
@@ -61,7 +63,8 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passe
   const V t1 = t + lane_load<V>(a.fh + o);
   const V inv = lane_load<V>(a.inv_cell + o);
   // cell_x's clamp from below is a no-op for the steps applied: they end
-  // inside the band, X1 >= lo_x = fo >= 0 (a -0 index compares equal to 0).
+  // inside the band, X1 >= lo_x >= 0 (fo, or 0 for the fold; a -0 index
+  // compares equal to 0).
   const V mi = lane_load<V>(a.max_i + o), mj = lane_load<V>(a.max_j + o);
   V ci = lane::trunc(X1 * inv), cj = lane::trunc(Y1 * inv);
   ci = lane::select(ci < mi, ci, mi);
