@@ -9,22 +9,24 @@ struct LaneArrays {
   static constexpr int max_lanes = 16;
   int lanes = 0;
   // Arnold state and step parameters per lane, relabelled so that the
-  // heading coordinate is z (to_lane in arnold_flow.hpp).
+  // heading coordinate is z (to_lane in arnold_flow.hpp). The integrator
+  // keeps the state in registers between the sink's calls and writes it here
+  // (with dX, dY) before each, as it brings seg_step and steps up to date.
   alignas(64) double x[max_lanes], y[max_lanes], z[max_lanes];
   // Their sines and cosines, carried from step to step (rk4_step's t1).
   alignas(64) double sx[max_lanes], cx[max_lanes], sy[max_lanes], cy[max_lanes], sz[max_lanes], cz[max_lanes];
   // The run's step_scale: (h/2) A, (h/2) B, (h/2) C and h_pos / 6.
   alignas(64) double kA[max_lanes], kB[max_lanes], kC[max_lanes], pos6[max_lanes];
   alignas(64) double small[max_lanes];  // 1: small-shift mode (arnold_flow.hpp)
-  // The step's robot displacement, written by the integrator.
+  // The step's robot displacement.
   alignas(64) double dX[max_lanes], dY[max_lanes];
 
   // Fast path (no obstacles): the integrator also moves the robot (Eq. 7 or
-  // the fold) and advances the clock when the
-  // step stays in its cell and triggers no end or segment check — the same
-  // operations the scalar PlannerRun would do. Any other step sets its bit in `flagged` and is left to the
-  // sink, which redoes it in full. A step into a neighbouring cell (fast = 2)
-  // is applied too, and its cell marked (see `cells`).
+  // the fold) and advances the clock when the step stays in its cell and
+  // triggers no end or segment check: the same operations the scalar
+  // PlannerRun would do. A step into a neighbouring cell (fast = 2) is
+  // applied too, and its cell marked (see `cells`). Any other step sets its
+  // bit in `flagged` and is left to the sink, which redoes it in full.
   alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
   // fold = 1: the fold boundary, the robot at the fold of its unfolded
   // position (UX, UY) into the band; 0: the mirror, (X, Y) reflected itself.
@@ -36,7 +38,7 @@ struct LaneArrays {
   alignas(64) double cell_i[max_lanes], cell_j[max_lanes];
   // 0: no fast path; 1: steps that stay in their cell; 2: also steps into a
   // neighbouring cell across one edge (no map zoning, whose windows count
-  // every cell touched: then only marking the entered cell is left).
+  // every cell touched).
   alignas(64) double fast[max_lanes];
   // fast = 2: the integrator marks an entered cell itself in the run's grid
   // (CoverageGrid's bytes, nx per row), counts it and stamps t_last_new.
