@@ -58,6 +58,8 @@ double ns_per_step(Batch batch, double seconds) {
   return 1e9 * elapsed / steps;
 }
 
+}  // namespace
+
 // The whole lane pipeline of one target over the workload.
 double measure_width(SimdTarget target, double seconds) {
   const Environment env = empty_map();
@@ -75,6 +77,8 @@ double measure_width(SimdTarget target, double seconds) {
       },
       seconds);
 }
+
+namespace {
 
 double measure_naive(double seconds) {
   const Environment env = empty_map();

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "simd_target.hpp"
+
 namespace chaosweep {
 
 struct BenchReport {
@@ -23,6 +25,11 @@ struct BenchReport {
   int sweep_runs;
   std::string cpu_best;
 };
+
+// ns per lane-step of one target's whole lane pipeline on the bench's
+// workload, measured once for at least `seconds` (`bench --pipeline`, for
+// comparing two builds: tests/benchmarks/ab.sh).
+double measure_width(SimdTarget target, double seconds);
 
 // Each kernel measurement takes `bench_rounds` rounds, interleaved, of at
 // least seconds / bench_rounds each.

@@ -18,8 +18,23 @@ void add_bench_command(CLI::App& app, std::function<int()>& action) {
   auto seconds = std::make_shared<double>(1.0);
   cmd->add_flag("--json", *json, "print one JSON object");
   cmd->add_option("--seconds", *seconds, "minimum time per kernel measurement, over all its rounds")->check(CLI::Range(0.01, 600.0));
-  cmd->callback([json, seconds, &action] {
-    action = [json, seconds]() -> int {
+  auto pipeline = std::make_shared<std::string>();
+  cmd->add_option("--pipeline", *pipeline,
+                  "measure only this target's lane pipeline (scalar, avx2 or avx512), once, and print its ns "
+                  "per lane-step (to compare two builds: tests/benchmarks/ab.sh)")
+      ->check(CLI::IsMember({"scalar", "avx2", "avx512"}));
+  cmd->callback([json, seconds, pipeline, &action] {
+    action = [json, seconds, pipeline]() -> int {
+      if (!pipeline->empty()) {
+        const SimdTarget t = *parse_simd_target(*pipeline);
+        if (!cpu_supports(t)) {
+          std::cerr << "error: --pipeline " << *pipeline << ": this CPU does not run it (best: "
+                    << to_string(best_simd_target()) << ")\n";
+          return exit_bad_input;
+        }
+        std::cout << measure_width(t, *seconds) << "\n";
+        return exit_ok;
+      }
       const BenchReport r = run_bench(*seconds);
       std::cout << (*json ? bench_json(r) : bench_text(r)) << "\n";
       return exit_ok;

@@ -598,3 +598,15 @@ TEST(CliBench, JsonReportsEachWidthTheNaiveRatioAndTheWholeSweep) {
   EXPECT_NE(r.out.find("\"cpu_best\": \""), std::string::npos);
   EXPECT_EQ(r.out.back() == '\n' ? r.out[r.out.size() - 2] : r.out.back(), '}');
 }
+
+TEST(CliBench, PipelineMeasuresOneTargetAndRefusesAnUnknownOne) {
+  const auto r = chaosweep::test::run_chaosweep("bench --pipeline scalar --seconds 0.01");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(std::stod(r.out), 0.0) << r.out;  // ns per lane-step, alone on its line
+  const auto bad = chaosweep::test::run_chaosweep("bench --pipeline avx3");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--pipeline: avx3 not in {scalar,avx2,avx512}"), std::string::npos) << bad.err;
+  const auto zero = chaosweep::test::run_chaosweep("bench --seconds 0");
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_NE(zero.err.find("--seconds"), std::string::npos) << zero.err;
+}
