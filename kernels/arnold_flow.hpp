@@ -309,7 +309,8 @@ inline Rk4Step<T> rk4_stage4(Rk4Work<T, H>& w, T pos6) {
 // reduced at once to what later stages need (its K and heading), and stages
 // 1+4 and 2+3 are summed as they come: this keeps few vectors live. The
 // operations are the same in every width. The lanes keep each run's
-// step_scale (bit for bit the same numbers) and call the second form.
+// step_scale and call this form; the next one computes it first (the same
+// numbers, bit for bit).
 template <class T, class H>
 inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const StepScale<T>& sc, const H& hs,
                            decltype(T() < T()) small) {
