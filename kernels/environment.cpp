@@ -45,4 +45,21 @@ bool push_out_of_obstacles(const Environment& env, double fo, double& x, double&
   return moved;
 }
 
+std::vector<unsigned char> cells_clear_of_obstacles(const Environment& env, double fo, int nx, int ny, double cell) {
+  std::vector<unsigned char> clear(std::size_t(nx) * std::size_t(ny), 1);
+  const double margin = 1e-6 * cell + 1e-9 * std::max(env.lx, env.ly);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double x0 = i * cell - margin, y0 = j * cell - margin;
+      const double x1 = (i + 1 == nx ? std::max((i + 1) * cell, env.lx) : (i + 1) * cell) + margin;
+      const double y1 = (j + 1 == ny ? std::max((j + 1) * cell, env.ly) : (j + 1) * cell) + margin;
+      for (const Rect& r : env.obstacles)
+        if (x1 > r.x0 - fo && x0 < r.x1 + fo && y1 > r.y0 - fo && y0 < r.y1 + fo) {
+          clear[std::size_t(j) * nx + i] = 0;
+          break;
+        }
+    }
+  return clear;
+}
+
 }  // namespace chaosweep

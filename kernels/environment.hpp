@@ -35,4 +35,10 @@ struct Environment {
 // Returns true when the point was moved.
 bool push_out_of_obstacles(const Environment& env, double fo, double& x, double& y);
 
+// 1 for each cell of an nx x ny grid of side `cell` (row-major; the last
+// row and column reach the map's edge) in which no position lies within fo
+// of an obstacle, so that Eq. 8 moves none: the cell, widened by a margin
+// for the rounding of a position's cell index, meets no obstacle grown by fo.
+std::vector<unsigned char> cells_clear_of_obstacles(const Environment& env, double fo, int nx, int ny, double cell);
+
 }  // namespace chaosweep

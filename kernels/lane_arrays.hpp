@@ -21,10 +21,10 @@ struct LaneArrays {
   // The step's robot displacement.
   alignas(64) double dX[max_lanes], dY[max_lanes];
 
-  // Fast path (no obstacles): the integrator also moves the robot (Eq. 7 or
-  // the fold) and advances the clock when the step stays in its cell and
-  // triggers no end or segment check: the same operations the scalar
-  // PlannerRun would do. A step into a neighbouring cell (fast = 2) is
+  // Fast path: the integrator also moves the robot (Eq. 7 or the fold; Eq. 8
+  // only where it moves nothing, see `clear`) and advances the clock when the
+  // step stays in its cell and triggers no end or segment check: the same
+  // operations the scalar PlannerRun would do. A step into a neighbouring cell (fast = 2) is
   // applied too, and its cell marked (see `cells`). Any other step sets its
   // bit in `flagged` and is left to the sink, which redoes it in full.
   alignas(64) double X[max_lanes], Y[max_lanes], t[max_lanes], fh[max_lanes];
@@ -45,9 +45,34 @@ struct LaneArrays {
   unsigned char* cells[max_lanes];
   int nx[max_lanes];
   double visited[max_lanes], needed[max_lanes];
+  // Maps with obstacles: the cells Eq. 8 leaves alone (cells_clear_of_obstacles;
+  // nullptr: no obstacles). A step is applied only when it ends in such a
+  // cell; the lane keeps whether its cell and its four neighbours are
+  // (lane_clearance, kept up to date whenever its cell changes).
+  const unsigned char* clear[max_lanes];
+  alignas(64) double clear_here[max_lanes], clear_left[max_lanes], clear_right[max_lanes];
+  alignas(64) double clear_down[max_lanes], clear_up[max_lanes];
   unsigned flagged = 0;  // out: bit l set when the sink must handle lane l's step
   unsigned covered = 0;  // out: bit l set when lane l's applied step reached dc (the sink ends the run)
 };
+
+// Sets lane l's clear_* for its cell (cell_i, cell_j). A template (V: the
+// kernel's vector type, or double) so that each kernel file's copy is its own.
+template <class V>
+inline void lane_clearance(LaneArrays& a, int l) {
+  const unsigned char* c = a.clear[l];
+  if (c == nullptr) {
+    a.clear_here[l] = a.clear_left[l] = a.clear_right[l] = a.clear_down[l] = a.clear_up[l] = 1.0;
+    return;
+  }
+  const int i = int(a.cell_i[l]), j = int(a.cell_j[l]), nx = a.nx[l], ny = int(a.max_j[l]) + 1;
+  auto at = [&](int ii, int jj) { return ii >= 0 && ii < nx && jj >= 0 && jj < ny && c[jj * nx + ii] ? 1.0 : 0.0; };
+  a.clear_here[l] = at(i, j);
+  a.clear_left[l] = at(i - 1, j);
+  a.clear_right[l] = at(i + 1, j);
+  a.clear_down[l] = at(i, j - 1);
+  a.clear_up[l] = at(i, j + 1);
+}
 
 // Takes the steps the integrator leaves to it (flagged, covered: boundaries,
 // grid, decisions, ends, refill) after any step that leaves one, and reports

@@ -33,16 +33,17 @@ struct FastPathBits {
 // RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
 // operation for operation, so a lane's result never depends on the path.
 // `passes`: the steps taken since the arrays' step and segment counts were
-// last brought up to date (count_steps), this one included. AnyFold: some
-// lane of the kernel has the fold boundary (else the mirror's short form).
-template <class V, bool AnyFold>
+// last brought up to date (count_steps), this one included. General: some
+// lane of the kernel has the fold boundary or obstacles (else the short form
+// for mirror lanes on open maps).
+template <class V, bool General>
 inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passes) {
   const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
   const V lo_x = lane_load<V>(a.lo_x + o), hi_x = lane_load<V>(a.hi_x + o);
   const V lo_y = lane_load<V>(a.lo_y + o), hi_y = lane_load<V>(a.hi_y + o);
   V X1 = X + s.dX, Y1 = Y + s.dY, UX{}, UY{}, UX1{}, UY1{};
-  if constexpr (!AnyFold) {
+  if constexpr (!General) {
     // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a
     // step that needs more than one is flagged below (still outside the band).
     X1 = lane::select(X1 < lo_x, (lo_x + lo_x) - X1, X1);
@@ -79,13 +80,21 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passe
   // when the squared index distance is 1 (a corner or a longer jump is left
   // to the sink's supercover).
   const V di = ci - cell_i, dj = cj - cell_j;
-  const auto quiet = ok & (ci == cell_i) & (cj == cell_j);
-  const auto entered = ok & (fast == lane::splat<V>(2.0)) & (lane::fma(di, di, dj * dj) == one);
+  auto quiet = ok & (ci == cell_i) & (cj == cell_j);
+  auto entered = ok & (fast == lane::splat<V>(2.0)) & (lane::fma(di, di, dj * dj) == one);
+  if constexpr (General) {  // the step must end where Eq. 8 moves nothing
+    quiet = quiet & (lane_load<V>(a.clear_here + o) == one);
+    const V target = lane::select(di == one, lane_load<V>(a.clear_right + o),
+                                  lane::select(di == -one, lane_load<V>(a.clear_left + o),
+                                               lane::select(dj == one, lane_load<V>(a.clear_up + o),
+                                                            lane_load<V>(a.clear_down + o))));
+    entered = entered & (target == one);
+  }
   const auto applied = quiet | entered;
   lane_store(a.X + o, lane::select(applied, X1, X));
   lane_store(a.Y + o, lane::select(applied, Y1, Y));
   lane_store(a.t + o, lane::select(applied, t1, t));
-  if constexpr (AnyFold) {
+  if constexpr (General) {
     lane_store(a.UX + o, lane::select(applied, UX1, UX));
     lane_store(a.UY + o, lane::select(applied, UY1, UY));
   }
@@ -104,8 +113,9 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
   unsigned covered = 0;
   for (; entered != 0; entered &= entered - 1) {
     const int l = __builtin_ctz(entered);
+    if (a.clear[l] != nullptr) lane_clearance<V>(a, l);
     unsigned char& c = a.cells[l][long(a.cell_j[l]) * a.nx[l] + long(a.cell_i[l])];
-    if (c != 0) continue;  // visited already (no blocked cells: fast = 2 has no obstacles)
+    if (c != 0) continue;  // visited already (a cell clear of obstacles is not blocked)
     c = 1;
     a.t_last_new[l] = a.t[l];
     a.visited[l] += 1.0;
@@ -167,7 +177,7 @@ struct StepsDone {
 
 // Steps the lanes from the arrays' state, keeping it in registers, until a
 // step leaves the sink work; stores every lane's state after that step.
-template <class V, int N, bool Staged, bool AnyFold>
+template <class V, int N, bool Staged, bool General>
 inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
@@ -194,7 +204,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
     unsigned entered = 0;
     d.applied = 0;
     for (int k = 0; k < N; ++k) {
-      const FastPathBits b = fast_path<V, AnyFold>(a, k * w, s[k], lane::splat<V>(double(d.passes)));
+      const FastPathBits b = fast_path<V, General>(a, k * w, s[k], lane::splat<V>(double(d.passes)));
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
       in[k].u = s[k].u;
@@ -213,15 +223,16 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
 // no lane needs the sink; before the sink runs, every lane's state goes to
 // the arrays, and after it comes back from them (the sink may rewrite any).
 // flatten: the step and the fast path inline into one loop body, one for
-// lanes that are all under the mirror boundary and one for the others.
+// lanes that are all under the mirror boundary on open maps and one for the
+// others.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
-    bool any_fold = false;
-    for (int l = 0; l < a.lanes; ++l) any_fold |= a.fold[l] != 0.0;
+    bool general = false;
+    for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.clear[l] != nullptr;
     const StepsDone d =
-        any_fold ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
+        general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
     count_steps<V>(a, d.passes, d.applied);
     a.flagged = d.flagged;
     a.covered = d.covered;

@@ -140,8 +140,7 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.steps[l] = double(r_.steps);
   a.seg_step[l] = seg_step_;
   a.niter[l] = p_.niter;
-  const bool fast = env_.obstacles.empty() && trace_ == nullptr;
-  a.fast[l] = !fast ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
+  a.fast[l] = trace_ != nullptr ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
   // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
   // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
   const bool fold = p_.boundary == Boundary::fold;
@@ -161,6 +160,10 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.nx[l] = grid_.nx();
   a.visited[l] = grid_.visited_cells();
   a.needed[l] = double(needed_);
+  if (!env_.obstacles.empty() && clear_.empty())
+    clear_ = cells_clear_of_obstacles(env_, p_.fo, grid_.nx(), grid_.ny(), grid_.cell_size());
+  a.clear[l] = env_.obstacles.empty() ? nullptr : clear_.data();
+  lane_clearance<double>(a, l);
 }
 
 void PlannerRun::take_lane_progress(const LaneArrays& a, int l) {
@@ -192,6 +195,7 @@ bool PlannerRun::lane_step(LaneArrays& a, int l) {
   a.visited[l] = grid_.visited_cells();
   a.cell_i[l] = grid_.cell_x(robot_.x());
   a.cell_j[l] = grid_.cell_y(robot_.y());
+  lane_clearance<double>(a, l);
   return false;
 }
 

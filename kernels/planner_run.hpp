@@ -4,6 +4,7 @@
 // transits (Algorithms 2 and 4) and scaling, or Logistic-map segments only.
 // Scalar reference; the SIMD kernels reproduce its Arnold steps bit for bit.
 #include <cmath>
+#include <vector>
 
 #include "arnold_flow.hpp"
 #include "coverage_grid.hpp"
@@ -101,6 +102,8 @@ class PlannerRun {
   bool ended_ = false;
   int seg_step_ = 0;
   long seg_before_ = 0, seg_c_u_ = 0;
+  // The cells Eq. 8 leaves alone, for the lanes (made at the first write_lane).
+  mutable std::vector<unsigned char> clear_;
 };
 
 inline bool PlannerRun::after_move(double dt, SegmentKind kind) {

@@ -599,7 +599,8 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
 
 TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries (also with steps longer than the
-  // map, which the lanes fold in full), obstacles, the scalar-only paths
+  // map, which the lanes fold in full), obstacles (with and without map
+  // zoning, under both boundaries), the scalar-only paths
   // (step doubling, Logistic, Chebyshev), a run outside small-shift mode (dt = 0.5) and
   // an invalid run, mixed in one batch.
   const SweepSpec s = parse_sweep_spec(R"(
@@ -608,6 +609,8 @@ case = [
   { label = "fold", boundary = "fold" },
   { label = "fold-long-steps", boundary = "fold", f = 200 },
   { label = "mirror-long-steps", f = 200 },
+  { label = "obstacles", env = "five_squares", start = [4.8, 1.6] },
+  { label = "obstacles-fold", boundary = "fold", env = "one_square", start = [1, 8] },
   { label = "is", index_switching = 1, ds_index = 1 },
   { label = "mz", map_zoning = 1, c = 0.8, env = "five_squares", start = [4.8, 1.6] },
   { label = "mz-open", map_zoning = 1, c = 0.8 },
@@ -654,8 +657,8 @@ A = [0.45, 0.5]
   int ok = 0;
   for (const RunRow& r : reference) ok += r.result.status == Status::ok;
   EXPECT_GT(ok, 5);  // most of these runs reach dc: the comparison covers whole runs
-  EXPECT_EQ(reference[24].result.status, Status::invalid);  // case 12 of 15, A = 0.45
-  EXPECT_EQ(reference[22].result.status, Status::ok) << reference[22].result.message;  // the Chebyshev run
+  EXPECT_EQ(reference[28].result.status, Status::invalid);  // case 14 of 17, A = 0.45
+  EXPECT_EQ(reference[26].result.status, Status::ok) << reference[26].result.message;  // the Chebyshev run
 }
 
 TEST(SimdChoice, HonoursAndChecksChaosweepSimd) {

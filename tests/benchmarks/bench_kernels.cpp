@@ -96,7 +96,7 @@ void BM_lane_kernel(benchmark::State& state) {
     a.X[l] = a.Y[l] = 25; a.t[l] = 0; a.fh[l] = 0.1; a.budget[l] = 1e300; a.stuck_time[l] = 1e300;
     a.t_last_new[l] = 0; a.seg_step[l] = 0; a.niter[l] = 1000; a.steps[l] = 0;
     a.lo_x[l] = a.lo_y[l] = -1e300; a.hi_x[l] = a.hi_y[l] = 1e300; a.inv_cell[l] = 0; a.max_i[l] = a.max_j[l] = 0;
-    a.cell_i[l] = a.cell_j[l] = 0; a.fast[l] = 1; a.fold[l] = a.UX[l] = a.UY[l] = 0;
+    a.cell_i[l] = a.cell_j[l] = 0; a.fast[l] = 1; a.fold[l] = a.UX[l] = a.UY[l] = 0; a.clear[l] = nullptr;
   }
   CountingSink sink;
   for (auto _ : state) {
