@@ -41,9 +41,8 @@ struct LaneArrays {
   // every cell touched).
   alignas(64) double fast[max_lanes];
   // fast = 2: the integrator marks an entered cell itself in the run's grid
-  // (CoverageGrid's bytes, nx per row), counts it and stamps t_last_new.
+  // (CoverageGrid's bytes, max_i + 1 per row), counts it and stamps t_last_new.
   unsigned char* cells[max_lanes];
-  int nx[max_lanes];
   double visited[max_lanes], needed[max_lanes];
   // Maps with obstacles: the cells Eq. 8 leaves alone (cells_clear_of_obstacles;
   // nullptr: no obstacles). A step is applied only when it ends in such a
@@ -65,7 +64,7 @@ inline void lane_clearance(LaneArrays& a, int l) {
     a.clear_here[l] = a.clear_left[l] = a.clear_right[l] = a.clear_down[l] = a.clear_up[l] = 1.0;
     return;
   }
-  const int i = int(a.cell_i[l]), j = int(a.cell_j[l]), nx = a.nx[l], ny = int(a.max_j[l]) + 1;
+  const int i = int(a.cell_i[l]), j = int(a.cell_j[l]), nx = int(a.max_i[l]) + 1, ny = int(a.max_j[l]) + 1;
   auto at = [&](int ii, int jj) { return ii >= 0 && ii < nx && jj >= 0 && jj < ny && c[jj * nx + ii] ? 1.0 : 0.0; };
   a.clear_here[l] = at(i, j);
   a.clear_left[l] = at(i - 1, j);

@@ -90,7 +90,6 @@ class LaneDriver final : public LaneSink {
     a_.cells[l] = nullptr;
     a_.clear[l] = nullptr;
     a_.clear_here[l] = a_.clear_left[l] = a_.clear_right[l] = a_.clear_down[l] = a_.clear_up[l] = 0.0;
-    a_.nx[l] = 1;
     a_.visited[l] = 0.0;
     a_.needed[l] = 1.0;
   }

@@ -114,7 +114,7 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
   for (; entered != 0; entered &= entered - 1) {
     const int l = __builtin_ctz(entered);
     if (a.clear[l] != nullptr) lane_clearance<V>(a, l);
-    unsigned char& c = a.cells[l][long(a.cell_j[l]) * a.nx[l] + long(a.cell_i[l])];
+    unsigned char& c = a.cells[l][long(a.cell_j[l]) * (long(a.max_i[l]) + 1) + long(a.cell_i[l])];
     if (c != 0) continue;  // visited already (a cell clear of obstacles is not blocked)
     c = 1;
     a.t_last_new[l] = a.t[l];

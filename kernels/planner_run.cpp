@@ -112,7 +112,7 @@ Trig3<double> PlannerRun::lane_trig(const LaneArrays& a, int l) const {
   return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, ds_);
 }
 
-void PlannerRun::write_lane(LaneArrays& a, int l) const {
+void PlannerRun::write_lane(LaneArrays& a, int l) {
   const Vec3<double> u = to_lane(u_, ds_);
   const Trig3<double> t = to_lane(trig_, ds_);
   const StepScale<double> sc = step_scale(to_lane(k_, ds_), h_, p_.f * p_.v * h_);
@@ -157,7 +157,6 @@ void PlannerRun::write_lane(LaneArrays& a, int l) const {
   a.cell_i[l] = grid_.cell_x(robot_.x());
   a.cell_j[l] = grid_.cell_y(robot_.y());
   a.cells[l] = grid_.cell_bytes();
-  a.nx[l] = grid_.nx();
   a.visited[l] = grid_.visited_cells();
   a.needed[l] = double(needed_);
   if (!env_.obstacles.empty() && clear_.empty())

@@ -31,7 +31,7 @@ class PlannerRun {
   // every step the integrator flags (see LaneArrays::flagged) lane_step(), until
   // it returns true (the run ended); then finish().
   void start();
-  void write_lane(LaneArrays& a, int l) const;
+  void write_lane(LaneArrays& a, int l);
   // Applies the flagged step in full: the robot's move, the cells, the end
   // checks and, at the end of a segment, the decisions of Algorithm 1 (Eq. 5,
   // index switching, MapZoning transits, scalar). Takes over the progress the
@@ -103,7 +103,7 @@ class PlannerRun {
   int seg_step_ = 0;
   long seg_before_ = 0, seg_c_u_ = 0;
   // The cells Eq. 8 leaves alone, for the lanes (made at the first write_lane).
-  mutable std::vector<unsigned char> clear_;
+  std::vector<unsigned char> clear_;
 };
 
 inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
