@@ -51,7 +51,9 @@ class ChebyshevRun {
         }
         if (k + 1 == route.size() || ended_) break;
         const int next = route[k + 1];
-        const auto& tr = d_.transitions[std::size_t(d_.transition_between(reg, next))];
+        const int t = d_.transition_between(reg, next);
+        if (t < 0) throw std::logic_error("loop route steps between rectangles with no transition");
+        const auto& tr = d_.transitions[std::size_t(t)];
         // Steps 5-6: iterate in the rectangle until a sub-goal falls in the
         // transition, then in the transition until one falls in the next.
         seek(d_.regions[std::size_t(reg)].box, tr.box, SegmentKind::chebyshev);
@@ -147,34 +149,34 @@ class ChebyshevRun {
 }  // namespace
 
 std::vector<int> loop_route(const RectDecomposition& d, int from) {
-  std::vector<int> route;
+  std::vector<int> route{from};
   std::vector<bool> seen(d.regions.size(), false);
-  // Iterative depth-first walk: a region is listed when entered and again
-  // when the walk comes back to it from a child.
+  seen[std::size_t(from)] = true;
+  // Iterative depth-first walk. Coming back from a child, the walk passes
+  // through every region between it and the next unseen one; those regions
+  // are held back (`back`) and listed only once a new region follows, so the
+  // route never returns after its last new region and each pair of
+  // consecutive entries stays linked by a transition.
   struct Frame {
     int region;
     std::vector<int> next;
     std::size_t k;
   };
   std::vector<Frame> stack{{from, d.neighbours(from), 0}};
-  seen[std::size_t(from)] = true;
-  route.push_back(from);
+  std::vector<int> back;
   while (!stack.empty()) {
     Frame& f = stack.back();
     if (f.k == f.next.size()) {
       stack.pop_back();
-      // Back in the parent only if it still has unseen neighbours to visit.
-      if (!stack.empty()) {
-        const Frame& parent = stack.back();
-        bool more = false;
-        for (std::size_t k = parent.k; k < parent.next.size(); ++k) more = more || !seen[std::size_t(parent.next[k])];
-        if (more) route.push_back(parent.region);
-      }
+      if (!stack.empty()) back.push_back(stack.back().region);
       continue;
     }
     const int n = f.next[f.k++];
     if (seen[std::size_t(n)]) continue;
     seen[std::size_t(n)] = true;
+    // `back` ends in f.region, the region n is entered from.
+    route.insert(route.end(), back.begin(), back.end());
+    back.clear();
     route.push_back(n);
     stack.push_back({n, d.neighbours(n), 0});
   }
