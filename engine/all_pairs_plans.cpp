@@ -1,8 +1,8 @@
 #include "all_pairs_plans.hpp"
 
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#include "parallel_indices.hpp"
 
 namespace chaosweep {
 
@@ -10,10 +10,7 @@ std::vector<seed002::PlanRow> all_pairs_plans(const seed002::Roadmap& rm, const 
                                               int threads) {
   std::vector<seed002::PlanRow> rows(sources.size());
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t(0), sources.size(),
-                      [&](std::size_t i) { rows[i] = seed002::all_plans_from(rm, sources[i]); });
-  });
+  parallel_indices(arena, sources.size(), [&](std::size_t i) { rows[i] = seed002::all_plans_from(rm, sources[i]); });
   return rows;
 }
 

@@ -1,11 +1,10 @@
 #include "sweep_runner.hpp"
 
 #include <algorithm>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "lane_driver.hpp"
+#include "parallel_indices.hpp"
 
 namespace chaosweep {
 
@@ -41,15 +40,13 @@ std::size_t run_rows(std::vector<RunRow>& rows, const SweepOptions& opt, tbb::ta
     queue.not_ok = &opt.progress->failed;
   }
   const int workers = std::max(1, arena.max_concurrency());
-  arena.execute([&] {
-    tbb::parallel_for(0, workers, [&](int) {
-      // A failure of a worker's own bookkeeping (e.g. memory) leaves its
-      // in-flight runs marked error; the other workers go on.
-      try {
-        run_queue(queue, opt.target);
-      } catch (const std::exception&) {
-      }
-    });
+  parallel_indices(arena, std::size_t(workers), [&](std::size_t) {
+    // A failure of a worker's own bookkeeping (e.g. memory) leaves its
+    // in-flight runs marked error; the other workers go on.
+    try {
+      run_queue(queue, opt.target);
+    } catch (const std::exception&) {
+    }
   });
   for (std::size_t k = 0; k < n; ++k) rows[k].result = std::move(results[k]);
   return std::min(queue.next.load(), n);  // all claimed runs have finished

@@ -527,16 +527,17 @@ long sweep_peak_rss(const TempDir& tmp, const std::string& name, const std::stri
 }
 }  // namespace
 
-// AddressSanitizer's quarantine holds freed memory (up to 256 MiB), so a
-// peak RSS means nothing under it; the Release suite measures.
-#if defined(__SANITIZE_ADDRESS__)
-#define SKIP_UNDER_ASAN() GTEST_SKIP() << "peak RSS is not meaningful under AddressSanitizer"
+// AddressSanitizer's quarantine holds freed memory (up to 256 MiB) and
+// ThreadSanitizer's shadow memory multiplies it, so a peak RSS means nothing
+// under either; the Release suite measures.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define SKIP_UNDER_SANITIZER() GTEST_SKIP() << "peak RSS is not meaningful under a sanitizer"
 #else
-#define SKIP_UNDER_ASAN() (void)0
+#define SKIP_UNDER_SANITIZER() (void)0
 #endif
 
 TEST(CliSweep, PeakMemoryDoesNotGrowWithTheNumberOfRuns) {
-  SKIP_UNDER_ASAN();
+  SKIP_UNDER_SANITIZER();
   TempDir tmp;
   const long small = sweep_peak_rss(tmp, "small", cheap_sweep(10, 500));   // 5,000 runs
   const long large = sweep_peak_rss(tmp, "large", cheap_sweep(100, 500));  // 50,000 runs
@@ -546,7 +547,7 @@ TEST(CliSweep, PeakMemoryDoesNotGrowWithTheNumberOfRuns) {
 }
 
 TEST(CliSweep, TenMillionRunSweepStartsAtOnceInBoundedMemory) {
-  SKIP_UNDER_ASAN();
+  SKIP_UNDER_SANITIZER();
   TempDir tmp;
   write_file(tmp.file("big.toml"), cheap_sweep(100, 100000));  // 10^7 runs
   const std::string partial = tmp.file("big.h5.partial");
@@ -564,7 +565,7 @@ TEST(CliSweep, TenMillionRunSweepStartsAtOnceInBoundedMemory) {
 
 // The report's shape (speed itself is for BENCHMARKS.md, never asserted).
 TEST(CliBench, JsonReportsEachWidthTheNaiveRatioAndTheWholeSweep) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   GTEST_SKIP() << "a bench of a sanitizer build measures the sanitizer; the Release suite runs it";
 #endif
   const auto r = chaosweep::test::run_chaosweep("bench --json --seconds 0.05");
