@@ -8,6 +8,7 @@
 #include <sstream>
 #include "toml.hpp"
 
+#include "decimal_range.hpp"
 #include "param_table.hpp"
 #include "splitmix.hpp"
 
@@ -89,16 +90,14 @@ std::vector<SpecValue> expand_range(const toml::table& r, const std::string& whe
       fail(where + ".num", "must be a whole number in [1, 1e8], not " + fmt(*count));
     const auto n = std::int64_t(*count);
     if (n == 1 && *start != *stop) fail(where, "num = 1 needs start == stop");
-    for (std::int64_t i = 0; i < n; ++i)
-      out.emplace_back(std::in_place_type<double>, n == 1 ? *start : *start + (*stop - *start) * double(i) / double(n - 1));
+    for (double v : DecimalRange::by_count(*start, *stop, n).values()) out.emplace_back(v);
   } else {
     const double s = *step;
     if (!(std::isfinite(s) && s != 0) || (*stop - *start) * s < 0)
       fail(where + ".step", "must be non-zero and point from start to stop");
-    // The stop value is included when it lies on the grid (to 1e-9 of a step).
-    const double n = std::floor((*stop - *start) / s + 1e-9) + 1;
-    if (n > max_axis_values) fail(where, "gives more than 1e8 values");
-    for (std::int64_t i = 0; i < std::int64_t(n); ++i) out.emplace_back(std::in_place_type<double>, *start + double(i) * s);
+    const DecimalRange range = DecimalRange::by_step(*start, *stop, s);
+    if (range.count() > max_axis_values) fail(where, "gives more than 1e8 values");
+    for (double v : range.values()) out.emplace_back(v);
   }
   return out;
 }
