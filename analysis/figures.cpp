@@ -68,7 +68,7 @@ FigureOutput heatmap_figure(const ResultSet& rs, const std::string& xcol, const 
   for (const Group& g : group_rows(rs, {xcol, ycol}, rows)) {
     const double z = group_statistic(rs, g.rows, stat);
     p.z[index_of(p.ys, g.key_num[1]) * p.xs.size() + index_of(p.xs, g.key_num[0])] = z;
-    csv.add_row({g.key[0], g.key[1], fmt_sig(z, 6), std::to_string(g.rows.size()),
+    csv.add_row({g.key[0], g.key[1], sig_cell(z, 6), std::to_string(g.rows.size()),
                  std::to_string(ok_rows(rs, g.rows).size())});
   }
   p.mark = std::move(mark);
@@ -132,7 +132,7 @@ FigureOutput fig6b(const ResultSet& rs, const FigureOptions& opt, const std::str
     const bool reached = t.ct <= bound;
     const double pct = 100.0 * double(i + 1) / n;
     csv.add_row({std::to_string(i + 1), format_number(t.a), format_number(t.b), format_number(t.c),
-                 std::isinf(t.ct) ? "-" : fmt_sig(t.ct, 6), reached ? fmt_fixed(pct, 3) : "-"});
+                 std::isinf(t.ct) ? "-" : sig_cell(t.ct, 6), reached ? fixed_cell(pct, 3) : "-"});
     if (reached) {  // a step: the share jumps at each tuple's CT
       curve.x.push_back(t.ct);
       curve.y.push_back(curve.y.back());
@@ -282,7 +282,7 @@ FigureOutput coverage(const ResultSet& rs, const FigureOptions& opt, const std::
       const double pct = 100.0 * double(rp.visited[i]) / free;
       s.x.push_back(rp.points[i].t);
       s.y.push_back(pct);
-      csv.add_row({std::to_string(id), format_number(rp.points[i].t), fmt_fixed(pct, 4)});
+      csv.add_row({std::to_string(id), format_number(rp.points[i].t), fixed_cell(pct, 4)});
     }
     p.series.push_back(std::move(s));
   }
@@ -323,7 +323,7 @@ FigureOutput line_figure(const ResultSet& rs, const FigureOptions& opt, const st
       const double y = value_statistic(std::move(v), stat);
       line.x.push_back(g.key_num[0]);
       line.y.push_back(y);
-      csv.add_row({s.key[0], g.key[0], fmt_sig(y, 6), std::to_string(g.rows.size())});
+      csv.add_row({s.key[0], g.key[0], sig_cell(y, 6), std::to_string(g.rows.size())});
     }
     p.series.push_back(std::move(line));
   }
@@ -390,7 +390,7 @@ FigureOutput cheb_lyapunov(const FigureOptions& opt, const std::string& path) {
     raw.x.push_back(k), raw.y.push_back(a);
     conj.x.push_back(k), conj.y.push_back(b);
     eq7.x.push_back(k), eq7.y.push_back(c);
-    csv.add_row({std::to_string(k), fmt_fixed(a, 5), fmt_fixed(b, 5), fmt_fixed(c, 5), fmt_fixed(std::log(k), 5)});
+    csv.add_row({std::to_string(k), fixed_cell(a, 5), fixed_cell(b, 5), fixed_cell(c, 5), fixed_cell(std::log(k), 5)});
   }
   p.series = {std::move(raw), std::move(conj), std::move(eq7)};
   p.mark = PlotMark{6, std::log(6.0), "k = 6: ln 6 = 1.7918 (paper: 3.2147 after the transform)"};
@@ -429,8 +429,8 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
     const double rel = mix(f) * g.num_free();
     p.z[std::size_t(cell)] = rel;
     const auto [cx, cy] = g.centre(f);
-    std::vector<std::string> row{format_number(cx), format_number(cy), fmt_sig(mix(f), 6)};
-    for (Eigen::Index k = 0; k < a.Pi.cols(); ++k) row.push_back(fmt_sig(a.Pi(f, k), 6));
+    std::vector<Cell> row{format_number(cx), format_number(cy), sig_cell(mix(f), 6)};
+    for (Eigen::Index k = 0; k < a.Pi.cols(); ++k) row.push_back(sig_cell(a.Pi(f, k), 6));
     csv.add_row(std::move(row));
   }
   FigureOutput out{path, csv_beside(path), {}};

@@ -18,13 +18,13 @@ TextTable seed001_table() {
   t.title = "Seed 001: the Chebyshev map (k = 6), paper vs ours";
   t.header = {"quantity", "n", "ours", "paper", "note"};
   const std::string nl = std::to_string(n_lyap);
-  t.add_row({"Lyapunov exponent, raw map", nl, fmt_fixed(lyapunov_exponent(k, x0, n_lyap), 4), "1.7918",
+  t.add_row({"Lyapunov exponent, raw map", nl, fixed_cell(lyapunov_exponent(k, x0, n_lyap), 4), "1.7918",
              "ln 6 = " + fmt_fixed(std::log(6.0), 4)});
-  t.add_row({"Lyapunov exponent, after arcsine transform", nl, fmt_fixed(lyapunov_exponent_arcsine(k, x0, n_lyap), 4),
+  t.add_row({"Lyapunov exponent, after arcsine transform", nl, fixed_cell(lyapunov_exponent_arcsine(k, x0, n_lyap), 4),
              "3.2147", "conjugate map g = T f T^-1: |g'| = 6, so ln 6"});
-  t.add_row({"Eq. 7 as printed, along the raw orbit", nl, fmt_fixed(lyapunov_paper_eq7(k, x0, n_lyap), 4), "3.2147",
+  t.add_row({"Eq. 7 as printed, along the raw orbit", nl, fixed_cell(lyapunov_paper_eq7(k, x0, n_lyap), 4), "3.2147",
              "-> ln(4k/pi) = " + fmt_fixed(std::log(4 * k / pi), 4)});
-  t.add_row({"Eq. 7 as printed, along the Eq. 9 orbit", nl, fmt_fixed(lyapunov_paper_eq7_on_eq9(k, x0, n_lyap), 4),
+  t.add_row({"Eq. 7 as printed, along the Eq. 9 orbit", nl, fixed_cell(lyapunov_paper_eq7_on_eq9(k, x0, n_lyap), 4),
              "3.2147", "Eq. 9 iterated as a map; Eq. 7 is its derivative"});
 
   struct Method {
@@ -41,7 +41,7 @@ TextTable seed001_table() {
   const long ns[] = {2000, 10000};
   for (const Method& m : methods)
     for (int i = 0; i < 2; ++i)
-      t.add_row({m.name, std::to_string(ns[i]), fmt_fixed(variable_difference(k, x0, y0, ns[i], m.t), 4), m.paper[i],
+      t.add_row({m.name, std::to_string(ns[i]), fixed_cell(variable_difference(k, x0, y0, ns[i], m.t), 4), m.paper[i],
                  m.note});
 
   t.notes.push_back(

@@ -78,11 +78,11 @@ TextTable seed002_table(const Seed002Options& opt) {
   t.header = {"quantity", "policy", "ours", "paper"};
   for (std::size_t i = 0; i < opt.angles.size(); ++i) {
     const std::string pol = format_number(opt.angles[i]) + " deg";
-    t.add_row({"mixture weight alpha", pol, fmt_fixed(a.alpha(Eigen::Index(i)), 3), paper && i < 3 ? fmt_fixed(paper_alpha[i], 3) : "-"});
+    t.add_row({"mixture weight alpha", pol, fixed_cell(a.alpha(Eigen::Index(i)), 3), paper && i < 3 ? fixed_cell(paper_alpha[i], 3) : "-"});
   }
   for (std::size_t i = 0; i < opt.angles.size(); ++i)
-    t.add_row({"||Pi e_i - b|| (the policy alone)", format_number(opt.angles[i]) + " deg", fmt_sig(a.single_residual[i], 4), "-"});
-  t.add_row({"||Pi alpha - b|| (the mixture)", "all", fmt_sig(a.residual, 4), "-"});
+    t.add_row({"||Pi e_i - b|| (the policy alone)", format_number(opt.angles[i]) + " deg", sig_cell(a.single_residual[i], 4), "-"});
+  t.add_row({"||Pi alpha - b|| (the mixture)", "all", sig_cell(a.residual, 4), "-"});
   for (std::size_t i = 0; i < opt.angles.size(); ++i)
     t.add_row({"persistent groups", format_number(opt.angles[i]) + " deg", std::to_string(a.persistent_groups[i]), "-"});
   // Algorithm 2 from sources spread over the configurations (exact bumps:
@@ -105,9 +105,9 @@ TextTable seed002_table(const Seed002Options& opt) {
   }
   for (std::size_t c = 0; c < by_count.size(); ++c)
     t.add_row({"plans using " + std::to_string(c) + " bouncing angle" + (c == 1 ? "" : "s") + " (%)",
-               std::to_string(sources.size()) + " sources", fmt_fixed(100.0 * double(by_count[c]) / double(total), 2), "-"});
+               std::to_string(sources.size()) + " sources", fixed_cell(100.0 * double(by_count[c]) / double(total), 2), "-"});
   t.add_row({"unreachable goals (%)", std::to_string(sources.size()) + " sources",
-             fmt_fixed(100.0 * double(unreachable) / double(total), 2), "-"});
+             fixed_cell(100.0 * double(unreachable) / double(total), 2), "-"});
   t.notes.push_back("alpha >= 0, sum 1, minimises ||Pi alpha - b|| with b uniform over free cells (exact over all "
                     "support sets). Plans: Dijkstra on the roadmap (w1 = 1 same policy, w2 = 2 policy change); the "
                     "map is our reconstruction (docs/seed002.md), so alpha differs from the paper's.");

@@ -53,7 +53,7 @@ TextTable seed003_table(const ResultSet& rs) {
     const bool known = s >= 0 && s <= 9 && rs.num("c3_n")[r] == 800;
     t.add_row({"Table 1", "(" + rs.cell("start_x", r) + ", " + rs.cell("start_y", r) + ")",
                std::string("coverage % at n = ") + rs.cell("c3_n", r) + ", heading " + heading_name(ds),
-               fmt_fixed(pct(rs, r), 2), known ? fmt_fixed(paper_t1[s][ds - 1], 2) : "-"});
+               fixed_cell(pct(rs, r), 2), known ? fixed_cell(paper_t1[s][ds - 1], 2) : "-"});
   }
   for (int h = 0; h < 3; ++h) {
     const auto& v = by_heading[h];
@@ -62,26 +62,26 @@ TextTable seed003_table(const ResultSet& rs) {
     for (double x : v) mean += x / double(v.size());
     for (double x : v) ss += (x - mean) * (x - mean);
     const double sd = v.size() > 1 ? std::sqrt(ss / double(v.size() - 1)) : 0.0;
-    t.add_row({"Table 2", std::string("heading ") + heading_name(h + 1), "mean coverage %", fmt_fixed(mean, 3),
-               fmt_fixed(paper_mean[h], 3)});
+    t.add_row({"Table 2", std::string("heading ") + heading_name(h + 1), "mean coverage %", fixed_cell(mean, 3),
+               fixed_cell(paper_mean[h], 3)});
     t.add_row({"Table 2", std::string("heading ") + heading_name(h + 1), "standard deviation (n - 1)",
-               fmt_fixed(sd, 4), fmt_fixed(paper_sd[h], 4)});
+               fixed_cell(sd, 4), fixed_cell(paper_sd[h], 4)});
   }
   // Table 3.
   for (std::size_t r : part_rows(rs, "table3")) {
     const int n = int(rs.num("c3_n")[r]);
     const auto p = paper_t3.find(n);
-    t.add_row({"Table 3", "n = " + std::to_string(n), "coverage % from (10, 10), heading z", fmt_fixed(pct(rs, r), 2),
-               p == paper_t3.end() ? "-" : fmt_fixed(p->second, 2)});
+    t.add_row({"Table 3", "n = " + std::to_string(n), "coverage % from (10, 10), heading z", fixed_cell(pct(rs, r), 2),
+               p == paper_t3.end() ? "-" : fixed_cell(p->second, 2)});
   }
   // Section 6.
   for (std::size_t r : part_rows(rs, "loop")) {
     const std::string row = "ic grid step " + rs.cell("c3_ic_grid", r);
     t.add_row({"Section 6", row, "sections", rs.cell("segments", r), "6"});
     t.add_row({"Section 6", row, "iterations n", rs.cell("steps", r), "7100"});
-    t.add_row({"Section 6", row, "coverage %", fmt_fixed(pct(rs, r), 2), "91"});
+    t.add_row({"Section 6", row, "coverage %", fixed_cell(pct(rs, r), 2), "91"});
     t.add_row({"Section 6", row, "coverage time to 90% (s, common model)",
-               rs.text("status")[r] == "ok" ? fmt_sig(rs.num("coverage_time")[r], 5) : "-", "-"});
+               rs.text("status")[r] == "ok" ? sig_cell(rs.num("coverage_time")[r], 5) : "-", "-"});
   }
   // Figs. 15-16.
   for (std::size_t r : part_rows(rs, "mirror")) {
@@ -90,8 +90,8 @@ TextTable seed003_table(const ResultSet& rs) {
     const std::string row = "n = " + std::to_string(n);
     t.add_row({"Mirror mapping", row, "reflections", rs.cell("reflections", r),
                p == paper_mirror.end() ? "-" : std::to_string(p->second.first)});
-    t.add_row({"Mirror mapping", row, "coverage %", fmt_fixed(pct(rs, r), 2),
-               p == paper_mirror.end() ? "-" : fmt_fixed(p->second.second, 2)});
+    t.add_row({"Mirror mapping", row, "coverage %", fixed_cell(pct(rs, r), 2),
+               p == paper_mirror.end() ? "-" : fixed_cell(p->second.second, 2)});
   }
   if (t.rows.empty())
     throw AnalysisError("no seed 003 rows: give the results of experiments/seed003.toml (labels table1, table3, loop, mirror)");

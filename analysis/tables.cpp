@@ -88,13 +88,13 @@ TextTable best_table(const ResultSet& rs, const TableOptions& opt) {
     const auto ranked = rank_tuples(rs, params, g.rows);
     for (std::size_t k = 0; k < ranked.size() && int(k) < opt.top; ++k) {
       const RankedTuple& rt = ranked[k];
-      std::vector<std::string> row = g.key;
+      std::vector<Cell> row(g.key.begin(), g.key.end());
       row.push_back(std::to_string(k + 1));
       row.insert(row.end(), rt.tuple.key.begin(), rt.tuple.key.end());
-      row.push_back(std::isinf(rt.score) ? "-" : fmt_sig(rt.score, 5));
-      row.push_back(fmt_sig(group_statistic(rs, rt.tuple.rows, "min"), 5));
+      row.push_back(std::isinf(rt.score) ? "-" : sig_cell(rt.score, 5));
+      row.push_back(sig_cell(group_statistic(rs, rt.tuple.rows, "min"), 5));
       row.push_back(ok_count(rs, rt.tuple.rows));
-      row.push_back(fmt_sig(group_statistic(rs, rt.tuple.rows, "median", "pr"), 3));
+      row.push_back(sig_cell(group_statistic(rs, rt.tuple.rows, "median", "pr"), 3));
       t.add_row(std::move(row));
     }
   }
@@ -115,16 +115,16 @@ TextTable summary_table(const ResultSet& rs, const TableOptions& opt) {
                         "median coverage"})
     t.header.emplace_back(h);
   for (const Group& g : group_rows(rs, by, all_rows(rs))) {
-    std::vector<std::string> row = g.key;
+    std::vector<Cell> row(g.key.begin(), g.key.end());
     row.push_back(std::to_string(g.rows.size()));
     row.push_back(std::to_string(ok_rows(rs, g.rows).size()));
-    row.push_back(fmt_fixed(group_statistic(rs, g.rows, "ok_rate"), 3));
-    for (const char* s : {"min", "q1", "median", "q3", "max"}) row.push_back(fmt_sig(group_statistic(rs, g.rows, s), 5));
-    row.push_back(fmt_sig(group_statistic(rs, g.rows, "median", "pr"), 3));
+    row.push_back(fixed_cell(group_statistic(rs, g.rows, "ok_rate"), 3));
+    for (const char* s : {"min", "q1", "median", "q3", "max"}) row.push_back(sig_cell(group_statistic(rs, g.rows, s), 5));
+    row.push_back(sig_cell(group_statistic(rs, g.rows, "median", "pr"), 3));
     std::vector<double> cov;
     if (rs.has("final_coverage"))
       for (std::size_t r : g.rows) cov.push_back(rs.num("final_coverage")[r]);
-    row.push_back(fmt_fixed(quantile(cov, 0.5), 3));
+    row.push_back(fixed_cell(quantile(cov, 0.5), 3));
     t.add_row(std::move(row));
   }
   t.notes.push_back("CT quantiles over ok runs (linear interpolation, numpy's default); PR = CT / T_opt; "
@@ -247,7 +247,7 @@ TextTable table1(const ResultSet& rs, const TableOptions& opt) {
     const auto orig = original.find(map_of(c));
     const double base = orig == original.end() || c.technique == "original" ? nan : orig->second;
     const double gain = (base - ct) / base * 100.0, hours = (base - ct) / 3600.0;
-    std::vector<std::string> row{labelled ? c.g.key[0] : std::to_string(&c - cases.data() + 1),
+    std::vector<Cell> row{labelled ? c.g.key[0] : std::to_string(&c - cases.data() + 1),
                                  c.technique,
                                  rs.cell("size_x", r) + " m",
                                  rs.cell("sr", r),
@@ -255,16 +255,16 @@ TextTable table1(const ResultSet& rs, const TableOptions& opt) {
                                  mz ? rs.cell("c", r) : "N/A",
                                  logistic ? "N/A" : rs.cell("ds_index", r),
                                  sc ? rs.cell("f", r) : "N/A",
-                                 std::isinf(ct) ? "-" : fmt_sig(ct, 5),
+                                 std::isinf(ct) ? "-" : sig_cell(ct, 5),
                                  ok_count(rs, c.best.tuple.rows),
                                  std::to_string(c.tuples),
-                                 std::isfinite(gain) ? fmt_fixed(gain, 1) : "-",
-                                 std::isfinite(hours) ? fmt_fixed(hours, 2) : "-",
-                                 std::isinf(ct) ? "-" : fmt_fixed(ct / rs.num("t_opt")[r], 2)};
+                                 std::isfinite(gain) ? fixed_cell(gain, 1) : "-",
+                                 std::isfinite(hours) ? fixed_cell(hours, 2) : "-",
+                                 std::isinf(ct) ? "-" : fixed_cell(ct / rs.num("t_opt")[r], 2)};
     if (!paper.empty()) {
       const auto p = paper.find(c.g.key[0]);
-      row.push_back(p == paper.end() ? "-" : fmt_sig(p->second.first, 5));
-      row.push_back(p == paper.end() || std::isinf(ct) ? "-" : fmt_fixed(ct / p->second.first, 2));
+      row.push_back(p == paper.end() ? "-" : sig_cell(p->second.first, 5));
+      row.push_back(p == paper.end() || std::isinf(ct) ? "-" : fixed_cell(ct / p->second.first, 2));
     }
     t.add_row(std::move(row));
   }

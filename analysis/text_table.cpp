@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "param_table.hpp"
 #include "result_set.hpp"
 
 namespace chaosweep {
@@ -16,11 +17,19 @@ TableFormat parse_table_format(const std::string& s) {
   throw AnalysisError("--format: unknown format '" + s + "' (allowed: md, csv, tex)");
 }
 
-void TextTable::add_row(std::vector<std::string> r) {
+void TextTable::add_row(std::vector<Cell> r) {
   if (r.size() != header.size())
     throw std::logic_error("table row of " + std::to_string(r.size()) + " cells under " +
                            std::to_string(header.size()) + " columns");
-  rows.push_back(std::move(r));
+  std::vector<std::string> shown, precise;
+  bool rounded = false;
+  for (const Cell& c : r) rounded = rounded || (!c.full.empty() && c.full != c.shown);
+  for (Cell& c : r) {
+    if (rounded) precise.push_back(c.full.empty() ? c.shown : std::move(c.full));
+    shown.push_back(std::move(c.shown));
+  }
+  rows.push_back(std::move(shown));
+  full.push_back(std::move(precise));
 }
 
 namespace {
@@ -71,7 +80,8 @@ void TextTable::write(std::ostream& os, TableFormat f) const {
   switch (f) {
     case TableFormat::csv:
       write_line(os, header, f);
-      for (const auto& r : rows) write_line(os, r, f);
+      for (std::size_t i = 0; i < rows.size(); ++i)
+        write_line(os, i < full.size() && !full[i].empty() ? full[i] : rows[i], f);
       return;
     case TableFormat::md:
       if (!title.empty()) os << "**" << md_cell(title) << "**\n\n";
@@ -132,5 +142,11 @@ std::string fmt_fixed(double v, int decimals) {
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   return buf;
 }
+
+std::string fmt_full(double v) { return std::isnan(v) ? "-" : format_number(v); }
+
+Cell sig_cell(double v, int digits) { return {fmt_sig(v, digits), fmt_full(v)}; }
+
+Cell fixed_cell(double v, int decimals) { return {fmt_fixed(v, decimals), fmt_full(v)}; }
 
 }  // namespace chaosweep

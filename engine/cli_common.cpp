@@ -61,9 +61,7 @@ void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw) {
     if (p.kind == ParamInfo::Kind::choice) {
       help += " (" + p.range_text() + "; default " + std::string(p.choices[int(d)]) + ")";
     } else if (!std::isnan(d)) {
-      std::ostringstream os;
-      os << d;
-      help += " (default " + os.str() + "; " + p.range_text() + ")";
+      help += " (default " + format_number(d) + "; " + p.range_text() + ")";
     }
     add(std::string(p.name), help, p.kind == ParamInfo::Kind::choice ? "NAME" : "NUM");
   }

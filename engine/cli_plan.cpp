@@ -8,6 +8,7 @@
 #include "cli_subcommands.hpp"
 #include "lane_driver.hpp"
 #include "metrics.hpp"
+#include "param_table.hpp"
 #include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 
@@ -123,11 +124,10 @@ void add_plan_command(CLI::App& app, std::function<int()>& action) {
         }
       }
       const RunSpec first = spec.run(0);
+      std::cout << "first run   env " << first.env << ", " << format_number(first.params.size_x) << " x "
+                << format_number(first.params.size_y) << " m, sr " << format_number(first.params.sr) << " m, planner "
+                << to_string(first.params.planner) << ", variant " << variant_name(first.params) << "\n";
       char buf[256];
-      std::snprintf(buf, sizeof buf, "first run   env %s, %g x %g m, sr %g m, planner %s, variant %s\n", first.env.c_str(),
-                    first.params.size_x, first.params.size_y, first.params.sr, to_string(first.params.planner),
-                    variant_name(first.params).c_str());
-      std::cout << buf;
       const double ns = calibrate(spec, cache, target);
       std::snprintf(buf, sizeof buf,
                     "work        at most %.3g integration steps (every run to its time budget; most end sooner)\n"

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "h5_store.hpp"
+#include "param_table.hpp"
 #include "result_columns.hpp"
 
 namespace chaosweep {
@@ -37,17 +38,12 @@ struct Table {
     }
   }
   std::string group_key(std::size_t i) const {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, " %gx%g m sr %g", f64.at("size_x")[i], f64.at("size_y")[i], f64.at("sr")[i]);
-    return text.at("variant")[i] + " " + text.at("env")[i] + buf;
+    return text.at("variant")[i] + " " + text.at("env")[i] + " " + format_number(f64.at("size_x")[i]) + "x" +
+           format_number(f64.at("size_y")[i]) + " m sr " + format_number(f64.at("sr")[i]);
   }
 };
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return format_number(v); }
 
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;

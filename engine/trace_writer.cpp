@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "param_table.hpp"
+
 namespace chaosweep {
 
 CsvTraceWriter::CsvTraceWriter(const std::string& path) : path_(path) {
@@ -18,7 +20,8 @@ CsvTraceWriter::~CsvTraceWriter() {
 }
 
 void CsvTraceWriter::point(const TracePoint& p) {
-  std::fprintf(f_, "%.17g,%.17g,%.17g,%s,%d\n", p.t, p.x, p.y, to_string(p.kind), p.ds_index);
+  std::fprintf(f_, "%s,%s,%s,%s,%d\n", format_number(p.t).c_str(), format_number(p.x).c_str(),
+               format_number(p.y).c_str(), to_string(p.kind), p.ds_index);
 }
 
 void CsvTraceWriter::close() {

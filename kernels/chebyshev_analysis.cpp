@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "param_table.hpp"
 
 namespace chaosweep {
 
@@ -13,11 +14,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return format_number(v); }
 
 void check_args(const char* who, int k, double x0, long n) {
   if (k < 2) throw std::invalid_argument(std::string(who) + ": k must be >= 2, got " + std::to_string(k));

@@ -1,8 +1,8 @@
 #include "param_table.hpp"
 #include "trace.hpp"
 
+#include <charconv>
 #include <cmath>
-#include <sstream>
 
 namespace chaosweep {
 
@@ -113,9 +113,11 @@ std::vector<ParamInfo> make_table() {
 }  // namespace
 
 std::string format_number(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[32];  // the shortest text that reads back to the same double
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
 }
 
 std::string ParamInfo::range_text() const {

@@ -32,7 +32,10 @@ struct ParamInfo {
 const std::vector<ParamInfo>& param_table();
 const ParamInfo* find_param(std::string_view name);
 
-// A number as messages show it (the shortest of iostream's default format).
+// A number in its shortest round-trip form (std::to_chars): the fewest
+// digits that read back as the same double ("0.3", "0.30000000000000004",
+// "1e+06", "nan", "inf"). Every parameter chaosweep prints goes through it,
+// so a printed value typed back in is the value that was used.
 std::string format_number(double v);
 
 // First out-of-range parameter, as a message; empty when all are in range.

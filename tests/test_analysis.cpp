@@ -248,7 +248,9 @@ TEST(Tables, Seed001NeedsNoResultsAndShowsThePapersValues) {
   const auto r = test::run_chaosweep("table seed001 --format csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("quantity,n,ours,paper,note\n", 0), 0u) << r.out;
-  EXPECT_NE(r.out.find("\"Lyapunov exponent, raw map\",1000000,1.7918,1.7918"), std::string::npos) << r.out;
+  // CSV carries our numbers in full (Markdown shows 1.7918), the paper's as printed.
+  EXPECT_NE(r.out.find("\"Lyapunov exponent, raw map\",1000000,1.79175889"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(",1.7918,ln 6 = 1.7918\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(",0.8309,"), std::string::npos);
   const auto bad = test::run_chaosweep("table summary");
   EXPECT_EQ(bad.exit_code, 2);
@@ -289,9 +291,9 @@ fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
   r = test::run_chaosweep("table seed003 " + dir.file("r.h5") + " --format csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Heading z from (8, 8) at n = 800: ours 30.75% (any start: docs/seed003.md), paper 49%.
-  EXPECT_NE(r.out.find("Table 1,\"(8, 8)\",\"coverage % at n = 800, heading z\",30.75,49.00"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("Table 2,heading z,mean coverage %,30.750,47.600"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("Table 3,n = 800,\"coverage % from (10, 10), heading z\",30.75,54.50"), std::string::npos);
+  EXPECT_NE(r.out.find("Table 1,\"(8, 8)\",\"coverage % at n = 800, heading z\",30.75,49\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 2,heading z,mean coverage %,30.75,47.6\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 3,n = 800,\"coverage % from (10, 10), heading z\",30.75,54.5\n"), std::string::npos);
   EXPECT_NE(r.out.find("Section 6,ic grid step 1,sections,8,6"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Mirror mapping,n = 779,coverage %,16.75,16.75"), std::string::npos) << r.out;
   r = test::run_chaosweep("table seed003 " + dir.file("r.h5") + " --where label=nothing");
@@ -374,6 +376,39 @@ void expect_drawn(const std::string& png, int w, int h) {
   EXPECT_EQ(p.height, h) << png;
   EXPECT_GT(p.colours, 8u) << png << ": a blank or single-colour image";
   EXPECT_GT(p.non_white, 0.03) << png << ": almost nothing drawn";
+}
+
+// A parameter is printed as the double it is (0.1 + 0.2 is not 0.3), in every
+// table and figure CSV; computed numbers are rounded for reading in Markdown
+// but carried in full in CSV.
+TEST(Tables, ParametersPrintInShortestRoundTripFormAndCsvCarriesFullPrecision) {
+  TempDir dir;
+  std::vector<RunRow> rows;
+  RunParams p;
+  p.A = 0.5, p.B = 0.2, p.C = 0.1 + 0.2;
+  rows.push_back(make_row(0, p, "empty", "", 1185.0999999999999));
+  p.C = 0.3;
+  rows.push_back(make_row(1, p, "empty", "", 3828.6123456789));
+  p.A = 0.6;  // a second column of the heatmap
+  rows.push_back(make_row(2, p, "empty", "", timeout));
+  p.C = 0.1 + 0.2;
+  rows.push_back(make_row(3, p, "empty", "", timeout));
+  write_results(dir.file("r.h5"), rows);
+  const ResultSet rs = ResultSet::load({dir.file("r.h5")});
+  TableOptions opt;
+  opt.params = {"A", "B", "C"};
+  const std::string md = table_text("best", rs, opt, TableFormat::md);
+  EXPECT_NE(md.find("| 1 | 0.5 | 0.2 | 0.30000000000000004 | 1185.1 | 1185.1 | 1/1 | 0.527 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 2 | 0.5 | 0.2 | 0.3 | 3828.6 | 3828.6 | 1/1 | 1.7 |"), std::string::npos) << md;
+  const std::string csv = table_text("best", rs, opt, TableFormat::csv);
+  EXPECT_NE(csv.find("\n1,0.5,0.2,0.30000000000000004,1185.1,1185.1,1/1,0.526711111111111\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n2,0.5,0.2,0.3,3828.6123456789,3828.6123456789,1/1,"), std::string::npos) << csv;
+  FigureOptions fo;
+  fo.size = {320, 240};
+  const FigureOutput out = make_figure("fig6a", rs, fo, dir.file("a.png"));
+  EXPECT_EQ(test::read_file(out.csv),
+            "A,C,min_ct,runs,ok\n0.5,0.3,3828.6123456789,1,1\n0.5,0.30000000000000004,1185.1,1,1\n"
+            "0.6,0.3,-,1,0\n0.6,0.30000000000000004,-,1,0\n");
 }
 
 class Fig6Results : public ::testing::Test {

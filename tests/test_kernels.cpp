@@ -14,6 +14,7 @@
 #include "coverage_grid.hpp"
 #include "environment.hpp"
 #include "metrics.hpp"
+#include "param_table.hpp"
 #include "planner.hpp"
 #include "robot_motion.hpp"
 #include "sincos.hpp"
@@ -596,4 +597,23 @@ TEST(Planner, PointSamplingNeverCoversMoreThanSegments) {
   p.sampling = Sampling::points;
   const RunResult pts = run_planner(p, square_map(50.0));
   EXPECT_LT(pts.visited_cells, seg.visited_cells);
+}
+
+TEST(FormatNumber, IsTheShortestTextThatReadsBackAsTheSameDouble) {
+  EXPECT_EQ(format_number(0.3), "0.3");
+  EXPECT_EQ(format_number(0.1 + 0.2), "0.30000000000000004");  // iostream's default showed "0.3"
+  EXPECT_EQ(format_number(0.2 + 3 * 0.05), "0.35000000000000003");
+  EXPECT_EQ(format_number(1185.0999999999999), "1185.1");
+  EXPECT_EQ(format_number(10000), "10000");
+  EXPECT_EQ(format_number(1e6), "1e+06");
+  EXPECT_EQ(format_number(9.007199254740992e15), "9007199254740992");
+  EXPECT_EQ(format_number(-0.5), "-0.5");
+  EXPECT_EQ(format_number(std::nan("")), "nan");
+  EXPECT_EQ(format_number(-INFINITY), "-inf");
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  for (int i = 0; i < 10000; ++i) {
+    const double v = i % 2 ? u(rng) : std::ldexp(u(rng), int(rng() % 200) - 100);
+    EXPECT_EQ(std::strtod(format_number(v).c_str(), nullptr), v) << format_number(v);
+  }
 }
