@@ -18,8 +18,9 @@ struct Replay {
   std::vector<TracePoint> points;
   std::vector<int> visited;  // visited free cells after each point
   CoverageGrid grid;         // cells covered at the end
-  // Empty when the replay reproduces the stored status, coverage time and
-  // step count; else what differs (another engine version wrote the file).
+  // Empty when the replay reproduces every stored column bit for bit (but
+  // wall_time); else the columns that differ (another engine version wrote
+  // the file, or an environment file changed).
   std::string mismatch;
 };
 

@@ -13,8 +13,9 @@
 namespace chaosweep {
 
 // Exit codes: 0 success (a run that ended timeout/stuck/diverged still ran),
-// 2 bad input (usage, out-of-range value, invalid run), 3 I/O or internal error.
-inline constexpr int exit_ok = 0, exit_bad_input = 2, exit_failure = 3;
+// 2 bad input (usage, out-of-range value, invalid run), 3 I/O or internal error;
+// 1 (like diff) when `run --from`, `compare` or `merge` found a difference.
+inline constexpr int exit_ok = 0, exit_differs = 1, exit_bad_input = 2, exit_failure = 3;
 
 // Adds --<param> for every parameter of the table plus --size, --start, --ic
 // and --env; raw values land in `raw` keyed by setting name.
