@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -213,6 +214,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         const ProgressMode mode = o->progress == "never" || (o->quiet && o->progress == "auto") ? ProgressMode::never
                                   : o->progress == "always"                                    ? ProgressMode::always
                                                                                                : ProgressMode::automatic;
+        const auto started = std::chrono::steady_clock::now();
         {
           ProgressReporter reporter(counters, shard_runs - skip, mode);
           written += run_sweep(spec, opt, [&](const std::vector<RunRow>& rows) {
@@ -220,6 +222,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
             for (const RunRow& r : rows) summary.add(r);
           }, &cache);
         }
+        summary.set_elapsed(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
         if (written < shard_runs) {
           std::cerr << "chaosweep sweep: interrupted: " << written << " of " << shard_runs << " runs are in "
                     << partial << "; continue with --resume\n";

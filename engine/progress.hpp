@@ -15,6 +15,12 @@ namespace chaosweep {
 
 enum class ProgressMode { automatic, always, never };
 
+// A duration as the progress line shows it: "42s", "3m07s", "2h46m" ("?" if not finite).
+std::string duration_text(double seconds);
+
+// The columns of the terminal on `fd` (TIOCGWINSZ), else $COLUMNS, else 80.
+int terminal_width(int fd);
+
 struct ProgressCounters {
   std::atomic<std::int64_t> done{0}, failed{0};
 };
@@ -28,8 +34,12 @@ class ProgressReporter {
   ProgressReporter(const ProgressReporter&) = delete;
   ProgressReporter& operator=(const ProgressReporter&) = delete;
 
-  // The line printed for a given state (tests pin its format).
-  static std::string line(std::int64_t done, std::int64_t total, std::int64_t failed, double seconds);
+  // The line printed for a given state (tests pin its format). With a
+  // width (a terminal's columns; 0: no limit) the line is shorter than it:
+  // terser wordings, then fewer fields, then cut, so that it never wraps (a
+  // wrapped line is not overwritten by the next, and floods the terminal).
+  static std::string line(std::int64_t done, std::int64_t total, std::int64_t failed, double seconds,
+                          int width = 0);
 
  private:
   void loop();

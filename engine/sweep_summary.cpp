@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "progress.hpp"
+
 namespace chaosweep {
 
 namespace {
@@ -84,6 +86,11 @@ std::string SweepSummary::text() const {
   } else {
     std::snprintf(buf, sizeof buf, "best CT     %.1f s  (run_id %lld)\nmedian CT   %.1f s  (over ok runs%s)\n",
                   best_time(), (long long)best_id_, median_time(), median_is_exact() ? "" : "; within 0.05%");
+    s += buf;
+  }
+  if (std::isfinite(elapsed_)) {
+    std::snprintf(buf, sizeof buf, "elapsed     %.1f s (wall clock%s)\n", elapsed_,
+                  elapsed_ >= 60 ? (", " + duration_text(elapsed_)).c_str() : "");
     s += buf;
   }
   return s;

@@ -1,6 +1,6 @@
 #pragma once
 // What a sweep printed at its end: counts per status, best and median
-// coverage time of the runs that reached dc.
+// coverage time of the runs that reached dc, and the time it took.
 #include <array>
 #include <cmath>
 #include <map>
@@ -26,12 +26,14 @@ class SweepSummary {
   double median_time() const;                      // NaN when no run is ok
   bool median_is_exact() const { return bins_.empty(); }
   std::int64_t best_run_id() const { return best_id_; }
+  // The sweep's wall-clock time, which text() states when set.
+  void set_elapsed(double seconds) { elapsed_ = seconds; }
   std::string text() const;
 
  private:
   void bin(double t);
   std::int64_t runs_ = 0, best_id_ = -1;
-  double best_time_ = NAN;
+  double best_time_ = NAN, elapsed_ = NAN;
   std::array<std::int64_t, 6> by_status_{};
   std::vector<double> ok_times_;               // while there are <= exact_limit
   std::map<std::uint64_t, std::int64_t> bins_;  // after: count per bin

@@ -676,6 +676,36 @@ TEST(Progress, LineShowsDoneTotalRateEtaAndFailures) {
   EXPECT_EQ(ProgressReporter::line(10, 100000, 0, 1.0), "10/100000 runs (0.0%), 10 runs/s, ETA 2h46m, 0 not ok");
 }
 
+// On a narrow terminal the live line gets terser, never longer than the
+// width minus one (a line that reaches the last column may wrap).
+TEST(Progress, LineFitsTheTerminalWidth) {
+  EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0, 80), "250/1000 runs (25.0%), 25 runs/s, ETA 30s, 12 not ok");
+  EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0, 50), "250/1000 25.0% 25/s ETA 30s 12 not ok");
+  EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0, 25), "250/1000 25.0% ETA 30s");
+  EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0, 16), "25.0% ETA 30s");
+  EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0, 8), "25.0% E");
+  for (int width : {1, 2, 10, 20, 30, 40, 50, 60, 80, 200})
+    for (const auto& [done, total, failed, s] : {std::tuple{0LL, 0LL, 0LL, 0.0}, {123456789LL, 9876543210LL, 4567890LL, 86400.0 * 30},
+                                                 {5LL, 7LL, 0LL, 1e-6}, {999999LL, 1000000LL, 999999LL, 3.5}}) {
+      const std::string line = ProgressReporter::line(done, total, failed, s, width);
+      EXPECT_LT(int(line.size()), std::max(width, 1)) << width << ": " << line;
+      EXPECT_FALSE(line.empty() && width > 1) << width;
+    }
+}
+
+TEST(SweepSummary, StatesTheElapsedWallClockTime) {
+  SweepSummary s;
+  RunRow row;
+  row.result.status = Status::ok;
+  row.result.coverage_time = 1234.5;
+  s.add(row);
+  EXPECT_EQ(s.text().find("elapsed"), std::string::npos);  // not measured, not stated
+  s.set_elapsed(12.34);
+  EXPECT_NE(s.text().find("\nelapsed     12.3 s (wall clock)\n"), std::string::npos) << s.text();
+  s.set_elapsed(3725);
+  EXPECT_NE(s.text().find("\nelapsed     3725.0 s (wall clock, 1h02m)\n"), std::string::npos) << s.text();
+}
+
 TEST(Compare, MannWhitneyTellsShiftedFromSameDistributions) {
   std::vector<double> x, y, z;
   for (int i = 0; i < 200; ++i) {
