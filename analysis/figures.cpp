@@ -442,43 +442,66 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   return out;
 }
 
+FigureOutput heatmap(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
+  if (opt.x.empty() || opt.y.empty()) throw AnalysisError("heatmap: give the two axes with --x COLUMN --y COLUMN");
+  return heatmap_figure(rs, opt.x, opt.y, opt.stat, opt.stat + " of coverage time over " + opt.x + " and " + opt.y,
+                        std::nullopt, opt, path);
+}
+
+struct FigureKind {
+  std::string name;
+  bool needs_results;
+  FigureOutput (*make)(const ResultSet&, const FigureOptions&, const std::string&);
+};
+
+// Every figure `chaosweep figure` knows: its dispatch, its list of names and
+// `--help`'s list are all this one list.
+const std::vector<FigureKind>& figure_kinds() {
+  static const std::vector<FigureKind> kinds{
+      {"fig6a", true, fig6a},
+      {"fig6b", true, fig6b},
+      {"heatmap", true, heatmap},
+      {"line", true, line_figure},
+      {"trajectory", true, trajectory},
+      {"coverage", true, coverage},
+      {"cheb_histogram", false, [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_histogram(o, p); }},
+      {"cheb_lyapunov", false, [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_lyapunov(o, p); }},
+      {"seed002_limit", false, [](const ResultSet&, const FigureOptions& o, const std::string& p) { return seed002_limit(o, p); }},
+  };
+  return kinds;
+}
+
+const FigureKind& figure_kind(const std::string& name) {
+  for (const FigureKind& k : figure_kinds())
+    if (k.name == name) return k;
+  std::string list;
+  for (const std::string& n : figure_names()) list += (list.empty() ? "" : ", ") + n;
+  throw AnalysisError("unknown figure '" + name + "' (allowed: " + list + ")");
+}
+
 }  // namespace
 
-bool figure_needs_results(const std::string& name) {
-  return name != "cheb_histogram" && name != "cheb_lyapunov" && name != "seed002_limit";
-}
+bool figure_needs_results(const std::string& name) { return figure_kind(name).needs_results; }
 
 std::string csv_beside(const std::string& image_path) {
   return std::filesystem::path(image_path).replace_extension(".csv").string();
 }
 
 const std::vector<std::string>& figure_names() {
-  static const std::vector<std::string> names{"fig6a",    "fig6b",          "heatmap",       "line",
-                                              "trajectory", "coverage", "cheb_histogram", "cheb_lyapunov",
-                                              "seed002_limit"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const FigureKind& k : figure_kinds()) out.push_back(k.name);
+    return out;
+  }();
   return names;
 }
 
 FigureOutput make_figure(const std::string& name, const ResultSet& rs, const FigureOptions& opt,
                          const std::string& image_path) {
+  const FigureKind& kind = figure_kind(name);
   check_image_path(image_path);
-  if (name == "cheb_histogram") return cheb_histogram(opt, image_path);
-  if (name == "cheb_lyapunov") return cheb_lyapunov(opt, image_path);
-  if (name == "seed002_limit") return seed002_limit(opt, image_path);
-  if (rs.rows() == 0) throw AnalysisError("the result files hold no runs");
-  if (name == "fig6a") return fig6a(rs, opt, image_path);
-  if (name == "fig6b") return fig6b(rs, opt, image_path);
-  if (name == "heatmap") {
-    if (opt.x.empty() || opt.y.empty()) throw AnalysisError("heatmap: give the two axes with --x COLUMN --y COLUMN");
-    return heatmap_figure(rs, opt.x, opt.y, opt.stat, opt.stat + " of coverage time over " + opt.x + " and " + opt.y,
-                          std::nullopt, opt, image_path);
-  }
-  if (name == "line") return line_figure(rs, opt, image_path);
-  if (name == "trajectory") return trajectory(rs, opt, image_path);
-  if (name == "coverage") return coverage(rs, opt, image_path);
-  std::string list;
-  for (const std::string& n : figure_names()) list += (list.empty() ? "" : ", ") + n;
-  throw AnalysisError("unknown figure '" + name + "' (allowed: " + list + ")");
+  if (kind.needs_results && rs.rows() == 0) throw AnalysisError("the result files hold no runs");
+  return kind.make(rs, opt, image_path);
 }
 
 }  // namespace chaosweep

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "h5_store.hpp"
 #include "param_table.hpp"
@@ -111,6 +112,23 @@ std::string ResultSet::cell(const std::string& name, std::size_t row) const {
   return format_number(num(name)[row]);
 }
 
+namespace {
+
+// "0.2, 0.25, 0.3" (at most 12, then "..."): the values a column takes.
+template <class T, class Text>
+std::string some_values(const std::vector<T>& v, Text text) {
+  std::set<T> distinct(v.begin(), v.end());
+  std::string s;
+  std::size_t n = 0;
+  for (const T& x : distinct) {
+    if (++n > 12) return s + ", ... (" + std::to_string(distinct.size()) + " values)";
+    s += (s.empty() ? "" : ", ") + text(x);
+  }
+  return s;
+}
+
+}  // namespace
+
 ResultSet ResultSet::where(const std::vector<std::string>& conditions) const {
   std::vector<bool> keep(rows_, true);
   for (const std::string& c : conditions) {
@@ -118,6 +136,8 @@ ResultSet ResultSet::where(const std::vector<std::string>& conditions) const {
     if (eq == std::string::npos || eq == 0)
       throw AnalysisError("--where " + c + ": expected COLUMN=VALUE");
     const std::string col = c.substr(0, eq), val = c.substr(eq + 1);
+    std::vector<bool> match(rows_);
+    std::string values;  // what the column holds, for when nothing matches
     if (is_numeric(col)) {
       double v;
       try {
@@ -128,11 +148,23 @@ ResultSet ResultSet::where(const std::vector<std::string>& conditions) const {
         throw AnalysisError("--where " + c + ": '" + col + "' is numeric, '" + val + "' is not a number");
       }
       const auto& x = num(col);
-      for (std::size_t r = 0; r < rows_; ++r) keep[r] = keep[r] && std::fabs(x[r] - v) <= 1e-9 * std::max(1.0, std::fabs(v));
+      for (std::size_t r = 0; r < rows_; ++r) match[r] = std::fabs(x[r] - v) <= 1e-9 * std::max(1.0, std::fabs(v));
+      values = some_values(x, [](double d) { return format_number(d); });
     } else {
       const auto& x = text(col);  // throws naming a missing column
-      for (std::size_t r = 0; r < rows_; ++r) keep[r] = keep[r] && x[r] == val;
+      for (std::size_t r = 0; r < rows_; ++r) match[r] = x[r] == val;
+      values = some_values(x, [](const std::string& t) { return "'" + t + "'"; });
     }
+    if (rows_ > 0 && std::find(match.begin(), match.end(), true) == match.end())
+      throw AnalysisError("--where " + c + " matches none of the " + std::to_string(rows_) + " runs: " + col +
+                          " takes " + values);
+    for (std::size_t r = 0; r < rows_; ++r) keep[r] = keep[r] && match[r];
+  }
+  if (rows_ > 0 && std::find(keep.begin(), keep.end(), true) == keep.end()) {
+    std::string all;
+    for (const std::string& c : conditions) all.append(all.empty() ? "" : " ").append("--where ").append(c);
+    throw AnalysisError(all + ": no run matches them all (each alone matches some of the " +
+                        std::to_string(rows_) + " runs)");
   }
   ResultSet out;
   out.sources_ = sources_;

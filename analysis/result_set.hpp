@@ -37,7 +37,9 @@ class ResultSet {
   std::string cell(const std::string& name, std::size_t row) const;
   std::vector<std::string> names() const;
   // The rows whose columns equal the given values ("COL=VALUE", numbers
-  // compared as numbers); throws AnalysisError naming a bad condition.
+  // compared as numbers); throws AnalysisError naming a bad condition, or a
+  // condition that matches no row (with the values its column takes), or
+  // saying that conditions each matching rows match none together.
   ResultSet where(const std::vector<std::string>& conditions) const;
 
  private:

@@ -292,28 +292,58 @@ double tuple_score(const ResultSet& rs, const std::vector<std::size_t>& rows) {
   return 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-const std::vector<std::string>& table_names() {
-  static const std::vector<std::string> names{"table1", "best", "summary", "seed001", "seed002", "seed003"};
-  return names;
+namespace {
+
+struct TableKind {
+  std::string name;
+  bool needs_results;
+  TextTable (*make)(const ResultSet&, const TableOptions&);
+};
+
+// Every table `chaosweep table` knows: its dispatch, its list of names and
+// `--help`'s list are all this one list.
+const std::vector<TableKind>& table_kinds() {
+  static const std::vector<TableKind> kinds{
+      {"table1", true, table1},
+      {"best", true, best_table},
+      {"summary", true, summary_table},
+      {"seed001", false, [](const ResultSet&, const TableOptions&) { return seed001_table(); }},
+      {"seed002", false,
+       [](const ResultSet&, const TableOptions& opt) {
+         Seed002Options o;
+         o.bins = opt.bins;
+         return seed002_table(o);
+       }},
+      {"seed003", true, [](const ResultSet& rs, const TableOptions&) { return seed003_table(rs); }},
+  };
+  return kinds;
 }
 
-bool table_needs_results(const std::string& name) { return name != "seed001" && name != "seed002"; }
-
-TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt) {
-  if (name == "seed001") return seed001_table();
-  if (name == "seed002") {
-    Seed002Options o;
-    o.bins = opt.bins;
-    return seed002_table(o);
-  }
-  if (rs.rows() == 0) throw AnalysisError("the result files hold no runs");
-  if (name == "table1") return table1(rs, opt);
-  if (name == "best") return best_table(rs, opt);
-  if (name == "summary") return summary_table(rs, opt);
-  if (name == "seed003") return seed003_table(rs);
+const TableKind& table_kind(const std::string& name) {
+  for (const TableKind& k : table_kinds())
+    if (k.name == name) return k;
   std::string list;
   for (const std::string& n : table_names()) list += (list.empty() ? "" : ", ") + n;
   throw AnalysisError("unknown table '" + name + "' (allowed: " + list + ")");
+}
+
+}  // namespace
+
+const std::vector<std::string>& table_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const TableKind& k : table_kinds()) out.push_back(k.name);
+    return out;
+  }();
+  return names;
+}
+
+bool table_needs_results(const std::string& name) { return table_kind(name).needs_results; }
+
+TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt) {
+  const TableKind& kind = table_kind(name);
+  if (kind.needs_results && rs.rows() == 0) throw AnalysisError("the result files hold no runs");
+  return kind.make(rs, opt);
 }
 
 }  // namespace chaosweep

@@ -87,6 +87,13 @@ void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& r
     if (key != "env" && key != "size" && key != "start" && key != "ic") apply_flag(run, key, text);
 }
 
+std::string names_or(const std::vector<std::string>& names) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return s;
+}
+
 std::string host_name() {
   char buf[256] = {};
   if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "run_params.hpp"
 #include "sweep_spec.hpp"
@@ -56,6 +57,9 @@ int run_reporting(const char* command, Body&& body) {
     return exit_failure;
   }
 }
+
+// "a, b or c": a list of names for a flag's one-line help.
+std::string names_or(const std::vector<std::string>& names);
 
 std::string host_name();
 std::string utc_now();  // ISO 8601

@@ -36,14 +36,18 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
     bool force = false;
   };
   auto o = std::make_shared<Opts>();
-  cmd->add_option("name", o->name, "fig6a, fig6b, heatmap, trajectory or coverage")->required();
-  cmd->add_option("results", o->files, "result files (.h5); none for cheb_histogram, cheb_lyapunov")
+  std::vector<std::string> computed;
+  for (const std::string& n : figure_names())
+    if (!figure_needs_results(n)) computed.push_back(n);
+  cmd->add_option("name", o->name, names_or(figure_names()))->required();
+  cmd->add_option("results", o->files, "result files (.h5); none for " + names_or(computed))
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->out, "image file: .png, .svg, .pdf or .eps")->required();
   add_force_flag(*cmd, o->force);
   cmd->add_option("--x", o->fig.x, "heatmap: column on the x axis");
   cmd->add_option("--y", o->fig.y, "heatmap: column on the y axis");
-  auto* stat = cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic")->capture_default_str();
+  auto* stat =
+      cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic, " + names_or(statistic_names()))->capture_default_str();
   cmd->add_option("--mark", o->mark, "fig6a/fig6b: the tuple to mark, A,B,C");
   cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -233,6 +234,37 @@ TEST(Tables, WhereKeepsTheRowsMatchingEveryCondition) {
   EXPECT_THROW(rs.where({"label"}), AnalysisError);
 }
 
+// A --where that keeps nothing says which condition, and what the column
+// holds, instead of "the result files hold no runs".
+TEST(Tables, WhereThatMatchesNothingSaysSoNamingTheConditionAndTheValues) {
+  TempDir dir;
+  write_results(dir.file("t1.h5"), table1_rows());
+  const ResultSet rs = ResultSet::load({dir.file("t1.h5")});
+  auto message = [&](const std::vector<std::string>& conditions) {
+    try {
+      (void)rs.where(conditions);
+    } catch (const AnalysisError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({"c=0.33"}), "--where c=0.33 matches none of the 16 runs: c takes 0.1, 0.25, 0.5");
+  EXPECT_EQ(message({"label=1", "env=nowhere"}),
+            "--where env=nowhere matches none of the 16 runs: env takes 'no_obstacles'");
+  EXPECT_EQ(message({"label=12", "c=0.5"}),
+            "--where label=12 --where c=0.5: no run matches them all (each alone matches some of the 16 runs)");
+  const std::string h5 = dir.file("t1.h5");
+  for (const std::string& cmd : {"table best " + h5 + " --where c=0.33", "figure fig6a " + h5 + " --where c=0.33 -o " +
+                                                                            dir.file("f.png")}) {
+    const auto r = test::run_chaosweep(cmd);
+    EXPECT_EQ(r.exit_code, 2) << cmd;
+    EXPECT_NE(r.err.find(": --where c=0.33 matches none of the 16 runs: c takes 0.1, 0.25, 0.5\n"), std::string::npos)
+        << cmd << "\n" << r.err;
+    EXPECT_EQ(r.err.find("hold no runs"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("f.png")));
+}
+
 TEST(Tables, ResultsOfSeveralFilesAreReadAsOne) {
   TempDir dir;
   auto rows = table1_rows();
@@ -409,6 +441,42 @@ TEST(Tables, ParametersPrintInShortestRoundTripFormAndCsvCarriesFullPrecision) {
   EXPECT_EQ(test::read_file(out.csv),
             "A,C,min_ct,runs,ok\n0.5,0.3,3828.6123456789,1,1\n0.5,0.30000000000000004,1185.1,1,1\n"
             "0.6,0.3,-,1,0\n0.6,0.30000000000000004,-,1,0\n");
+}
+
+// The names `name` lists in `table --help` / `figure --help` (its one line:
+// "a, b or c").
+std::vector<std::string> help_names(const std::string& help) {
+  const auto at = help.find("  name TEXT REQUIRED");
+  EXPECT_NE(at, std::string::npos) << help;
+  if (at == std::string::npos) return {};
+  std::string line = help.substr(at + 20, help.find('\n', at) - at - 20);
+  line = std::regex_replace(line, std::regex(" or "), ", ");
+  std::vector<std::string> out;
+  for (const std::string& n : split_list(line)) out.push_back(n);
+  return out;
+}
+
+// The one-line lists of names in --help are the code's own lists, and the
+// longer descriptions below them cover every name.
+TEST(Help, TableAndFigureNameListsHoldEveryNameTheCommandsAccept) {
+  for (const auto& [command, names] : {std::pair{std::string("table"), table_names()},
+                                       std::pair{std::string("figure"), figure_names()}}) {
+    const auto r = test::run_chaosweep(command + " --help");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(help_names(r.out), names) << r.out;
+    const std::string footer = r.out.substr(r.out.find(command == "table" ? "\nTables:" : "\nFigures"));
+    for (const std::string& n : names) {
+      EXPECT_TRUE(std::regex_search(footer, std::regex("\n  (\\w+, )*" + n + "[ ,]"))) << n << " is not described:\n" << footer;
+      // Accepted: naming it is never "unknown" (tables and figures alike need results or not).
+      EXPECT_NO_THROW((void)(command == "table" ? table_needs_results(n) : figure_needs_results(n))) << n;
+    }
+  }
+  // The statistics --stat takes, too.
+  const auto r = test::run_chaosweep("figure --help");
+  EXPECT_NE(r.out.find("statistic, min, q1, median, mean, q3, max, ok_rate or runs"), std::string::npos) << r.out;
+  EXPECT_EQ(statistic_names(), (std::vector<std::string>{"min", "q1", "median", "mean", "q3", "max", "ok_rate", "runs"}));
+  EXPECT_THROW(table_needs_results("nosuch"), AnalysisError);
+  EXPECT_THROW(figure_needs_results("nosuch"), AnalysisError);
 }
 
 class Fig6Results : public ::testing::Test {
