@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "grouping.hpp"
+#include "named_list.hpp"
 #include "chebyshev_analysis.hpp"
 #include "chebyshev_map.hpp"
 #include "param_table.hpp"
@@ -471,13 +472,7 @@ const std::vector<FigureKind>& figure_kinds() {
   return kinds;
 }
 
-const FigureKind& figure_kind(const std::string& name) {
-  for (const FigureKind& k : figure_kinds())
-    if (k.name == name) return k;
-  std::string list;
-  for (const std::string& n : figure_names()) list += (list.empty() ? "" : ", ") + n;
-  throw AnalysisError("unknown figure '" + name + "' (allowed: " + list + ")");
-}
+const FigureKind& figure_kind(const std::string& name) { return find_named(figure_kinds(), name, "figure"); }
 
 }  // namespace
 
@@ -488,11 +483,7 @@ std::string csv_beside(const std::string& image_path) {
 }
 
 const std::vector<std::string>& figure_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const FigureKind& k : figure_kinds()) out.push_back(k.name);
-    return out;
-  }();
+  static const std::vector<std::string> names = names_of(figure_kinds());
   return names;
 }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "grouping.hpp"
+#include "named_list.hpp"
 #include "param_table.hpp"
 #include "seed001.hpp"
 #include "seed002.hpp"
@@ -319,22 +320,12 @@ const std::vector<TableKind>& table_kinds() {
   return kinds;
 }
 
-const TableKind& table_kind(const std::string& name) {
-  for (const TableKind& k : table_kinds())
-    if (k.name == name) return k;
-  std::string list;
-  for (const std::string& n : table_names()) list += (list.empty() ? "" : ", ") + n;
-  throw AnalysisError("unknown table '" + name + "' (allowed: " + list + ")");
-}
+const TableKind& table_kind(const std::string& name) { return find_named(table_kinds(), name, "table"); }
 
 }  // namespace
 
 const std::vector<std::string>& table_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const TableKind& k : table_kinds()) out.push_back(k.name);
-    return out;
-  }();
+  static const std::vector<std::string> names = names_of(table_kinds());
   return names;
 }
 

@@ -94,6 +94,15 @@ std::string names_or(const std::vector<std::string>& names) {
   return s;
 }
 
+void add_name_and_results(CLI::App& cmd, std::string& name, std::vector<std::string>& files,
+                          const std::vector<std::string>& names, bool (*needs_results)(const std::string&)) {
+  std::vector<std::string> computed;
+  for (const std::string& n : names)
+    if (!needs_results(n)) computed.push_back(n);
+  cmd.add_option("name", name, names_or(names))->required();
+  cmd.add_option("results", files, "result files (.h5); none for " + names_or(computed))->check(CLI::ExistingFile);
+}
+
 std::string host_name() {
   char buf[256] = {};
   if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";

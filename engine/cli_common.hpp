@@ -61,6 +61,11 @@ int run_reporting(const char* command, Body&& body) {
 // "a, b or c": a list of names for a flag's one-line help.
 std::string names_or(const std::vector<std::string>& names);
 
+// The positionals of `table` and `figure`: `name` (one of `names`) and the
+// result files (none for the names `needs_results` says are computed).
+void add_name_and_results(CLI::App& cmd, std::string& name, std::vector<std::string>& files,
+                          const std::vector<std::string>& names, bool (*needs_results)(const std::string&));
+
 std::string host_name();
 std::string utc_now();  // ISO 8601
 

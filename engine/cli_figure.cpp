@@ -36,12 +36,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
     bool force = false;
   };
   auto o = std::make_shared<Opts>();
-  std::vector<std::string> computed;
-  for (const std::string& n : figure_names())
-    if (!figure_needs_results(n)) computed.push_back(n);
-  cmd->add_option("name", o->name, names_or(figure_names()))->required();
-  cmd->add_option("results", o->files, "result files (.h5); none for " + names_or(computed))
-      ->check(CLI::ExistingFile);
+  add_name_and_results(*cmd, o->name, o->files, figure_names(), figure_needs_results);
   cmd->add_option("-o,--output", o->out, "image file: .png, .svg, .pdf or .eps")->required();
   add_force_flag(*cmd, o->force);
   cmd->add_option("--x", o->fig.x, "heatmap: column on the x axis");

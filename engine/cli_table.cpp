@@ -34,12 +34,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
     bool force = false;
   };
   auto o = std::make_shared<Opts>();
-  std::vector<std::string> computed;
-  for (const std::string& n : table_names())
-    if (!table_needs_results(n)) computed.push_back(n);
-  cmd->add_option("name", o->name, names_or(table_names()))->required();
-  cmd->add_option("results", o->files, "result files (.h5); none for " + names_or(computed))
-      ->check(CLI::ExistingFile);
+  add_name_and_results(*cmd, o->name, o->files, table_names(), table_needs_results);
   cmd->add_option("--format", o->format, "md, csv or tex")->capture_default_str();
   cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
   add_force_flag(*cmd, o->force);

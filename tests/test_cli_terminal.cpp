@@ -53,13 +53,18 @@ TerminalRun run_on_terminal(const std::vector<std::string>& args, unsigned short
   return out;
 }
 
+// The demo sweep with live progress on a terminal `columns` wide.
+TerminalRun sweep_demo_on_terminal(const TempDir& dir, unsigned short columns) {
+  return run_on_terminal({"sweep", std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml", "-o",
+                          dir.file("demo.h5"), "--threads", "2", "--progress", "always"},
+                         columns);
+}
+
 }  // namespace
 
 TEST(CliSweepTerminal, TheLiveProgressLineFitsAFiftyColumnTerminal) {
   TempDir dir;
-  const TerminalRun r = run_on_terminal({"sweep", std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml", "-o",
-                                         dir.file("demo.h5"), "--threads", "2", "--progress", "always"},
-                                        50);
+  const TerminalRun r = sweep_demo_on_terminal(dir, 50);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // Each redraw is "\r\033[K" + the line; a line of 50 or more characters
   // would wrap and the next \r would redraw only its second half.
@@ -83,9 +88,7 @@ TEST(CliSweepTerminal, TheLiveProgressLineFitsAFiftyColumnTerminal) {
 
 TEST(CliSweepTerminal, AWideTerminalGetsTheFullLine) {
   TempDir dir;
-  const TerminalRun r = run_on_terminal({"sweep", std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml", "-o",
-                                         dir.file("demo.h5"), "--threads", "2", "--progress", "always"},
-                                        120);
+  const TerminalRun r = sweep_demo_on_terminal(dir, 120);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(std::regex_search(r.output, std::regex("280/280 runs \\(100\\.0%\\), [0-9]+ runs/s, ETA 0s, [0-9]+ not ok")))
       << r.output;
