@@ -1,9 +1,9 @@
-// `chaosweep run`: one run from flags.
+// `chaosweep run`: one run from flags, or a stored row re-run (--from).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
