@@ -2,7 +2,6 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include "toml.hpp"
 
 #include "clutter.hpp"
+#include "input_file.hpp"
 
 namespace chaosweep {
 
@@ -62,6 +62,7 @@ Environment parse_text(const std::string& text, const std::string& path, double 
   try {
     check_toml_text(text);
     t = toml::parse(text, path);
+    check_toml_integers(t);
   } catch (const TomlInputError& e) {
     fail(path, e.what());
   } catch (const toml::parse_error& e) {
@@ -199,11 +200,13 @@ Environment parse_text(const std::string& text, const std::string& path, double 
 
 Environment parse_file(const std::string& path, double size_x, double size_y,
                        std::optional<std::uint64_t> clutter_seed) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot read the environment file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_text(text.str(), path, size_x, size_y, clutter_seed);
+  std::string text;
+  try {
+    text = read_input_file(path, "the environment file");
+  } catch (const InputFileError& e) {
+    throw std::runtime_error(std::string("environment ") + e.what());
+  }
+  return parse_text(text, path, size_x, size_y, clutter_seed);
 }
 
 }  // namespace
