@@ -16,9 +16,9 @@
 #include "disk_room.hpp"
 #include "cli_subcommands.hpp"
 #include "h5_store.hpp"
+#include "input_identity.hpp"
 #include "output_lock.hpp"
 #include "progress.hpp"
-#include "run_hash.hpp"
 #include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 #include "sweep_summary.hpp"
@@ -130,7 +130,8 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
                   "and SLURM_ARRAY_TASK_COUNT when set")
       ->type_name("K/N");
   cmd->add_flag("--resume", o->resume,
-                "continue OUT.partial of the same spec and shard (or do nothing if OUT is complete)");
+                "continue OUT.partial of the same spec, environment files and shard (or do nothing if OUT is "
+                "complete)");
   cmd->add_flag("--force", o->force,
                 "run even though OUT (replaced when this sweep completes) or OUT.partial (started over) exists");
   cmd->add_option("--batch", o->batch, "runs per write to OUT.partial")->check(CLI::Number)->check(CLI::Range(1, 1 << 24));
@@ -156,7 +157,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         return exit_bad_input;
       }
       const std::string partial = o->out + ".partial";
-      const std::string spec_hash = hex64(fnv1a64(spec.text));
+      const SweepInputs inputs = sweep_inputs(spec, cache);  // the spec and every environment file it loaded
       const std::int64_t shard_runs = shard_size(spec.size(), shard.index, shard.count);
       std::int64_t skip = 0;
       std::unique_ptr<OutputLock> lock;
@@ -168,8 +169,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         lock = std::make_unique<OutputLock>(o->out);  // from here on, this process is OUT's only writer
         resuming = o->resume && fs::exists(partial);
         if (o->resume && !fs::exists(partial) && fs::exists(o->out)) {
-          if (read_attribute(o->out, "spec_hash") != spec_hash)
-            throw std::runtime_error(o->out + " is complete but holds another spec's runs");
+          check_same_inputs(o->out, inputs);
           if (!o->quiet) std::cout << o->out << " is complete: nothing to resume\n";
           return exit_ok;
         }
@@ -177,8 +177,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
           throw std::runtime_error(partial + " exists (an interrupted sweep): pass --resume to continue it, "
                                    "or --force to start over");
         if (resuming) {
-          if (read_attribute(partial, "spec_hash") != spec_hash)
-            throw std::runtime_error(partial + " holds another spec's runs (spec_hash differs)");
+          check_same_inputs(partial, inputs);
           if (read_attribute(partial, "shard") != std::to_string(shard.index) + "/" + std::to_string(shard.count))
             throw std::runtime_error(partial + " holds shard " + read_attribute(partial, "shard") + ", not " +
                                      std::to_string(shard.index) + "/" + std::to_string(shard.count));
@@ -220,7 +219,9 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
           writer.set_attribute("git_commit", git_commit());
           writer.set_attribute("git_dirty", git_dirty() ? "true" : "false");
           writer.set_attribute("spec", spec.text);
-          writer.set_attribute("spec_hash", spec_hash);
+          writer.set_attribute("spec_hash", inputs.spec_hash);
+          writer.set_attribute("inputs_hash", inputs.hash());
+          writer.set_attribute("input_files", inputs.text());
           writer.set_attribute("spec_path", o->spec);
           writer.set_attribute("spec_name", spec.name);
           writer.set_attribute("runs_total", std::to_string(spec.size()));

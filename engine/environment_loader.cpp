@@ -10,6 +10,7 @@
 
 #include "clutter.hpp"
 #include "input_file.hpp"
+#include "run_hash.hpp"
 
 namespace chaosweep {
 
@@ -199,13 +200,14 @@ Environment parse_text(const std::string& text, const std::string& path, double 
 }
 
 Environment parse_file(const std::string& path, double size_x, double size_y,
-                       std::optional<std::uint64_t> clutter_seed) {
+                       std::optional<std::uint64_t> clutter_seed, InputRecord* source) {
   std::string text;
   try {
     text = read_input_file(path, "the environment file");
   } catch (const InputFileError& e) {
     throw std::runtime_error(std::string("environment ") + e.what());
   }
+  if (source) *source = {path, fnv1a64(text)};
   return parse_text(text, path, size_x, size_y, clutter_seed);
 }
 
@@ -231,7 +233,7 @@ std::string find_environment_file(const std::string& name) {
   return {};
 }
 
-Environment load_environment(const std::string& spec, double size_x, double size_y) {
+Environment load_environment(const std::string& spec, double size_x, double size_y, InputRecord* source) {
   if (spec == "empty" || spec.empty()) {
     Environment env;
     env.name = "empty";
@@ -255,7 +257,7 @@ Environment load_environment(const std::string& spec, double size_x, double size
     throw std::runtime_error("environment '" + spec +
                              "' not found: give a path to a .toml file, \"empty\", or a name "
                              "from experiments/envs/");
-  return parse_file(path, size_x, size_y, seed);
+  return parse_file(path, size_x, size_y, seed, source);
 }
 
 std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x,
@@ -264,9 +266,16 @@ std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec
   auto key = std::tuple{spec, size_x, size_y};
   auto it = cache_.find(key);
   if (it != cache_.end()) return it->second;
-  auto env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y));
+  InputRecord source;
+  auto env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y, &source));
   cache_.emplace(key, env);
+  if (!source.path.empty()) files_[spec] = source;
   return env;
+}
+
+std::map<std::string, InputRecord> EnvironmentCache::files() const {
+  std::lock_guard lock(mutex_);
+  return files_;
 }
 
 }  // namespace chaosweep

@@ -4,6 +4,7 @@
 // the first run, and nothing is written.
 #include <gtest/gtest.h>
 
+#include <hdf5.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "h5_store.hpp"
 #include "test_util.hpp"
 
 using chaosweep::test::run_chaosweep;
@@ -28,6 +30,14 @@ const char* tiny_sweep = "[fixed]\nsize = 10\nsr = 2\nmax_time = 5\n[axes]\nA = 
 // tiny_sweep on the environment `env`.
 std::string tiny_sweep_on(const std::string& env) {
   return "[fixed]\nenv = \"" + env + "\"\nsize = 10\nsr = 2\nmax_time = 5\n[axes]\nA = [0.4, 0.5]\n";
+}
+
+// As a file written before inputs_hash was recorded.
+void delete_attribute(const std::string& path, const char* name) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << path;
+  EXPECT_GE(H5Adelete(f, name), 0) << name;
+  H5Fclose(f);
 }
 
 // Every file directly in `dir`.
@@ -157,4 +167,32 @@ TEST(CliPlan, ABillionRunSpecIsPlannedWithoutVisitingEveryRun) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(has(r.out, "runs        1000000000  (1000 x 1000 x 1000)")) << r.out;
   EXPECT_TRUE(has(r.out, "work        at most 5e+10 integration steps")) << r.out;
+}
+
+TEST(CliMerge, ShardsMadeWithDifferentEnvironmentFilesAreRefusedNamingTheFile) {
+  TempDir tmp;
+  write_file(tmp.file("env1.toml"), "obstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n");
+  write_file(tmp.file("s.toml"), tiny_sweep_on(tmp.file("env1.toml")));
+  const std::string sweep = "sweep " + tmp.file("s.toml") + " -q -o ";
+  ASSERT_EQ(run_chaosweep(sweep + tmp.file("s0.h5") + " --shard 0/2").exit_code, 0);
+  ASSERT_EQ(run_chaosweep(sweep + tmp.file("s1.h5") + " --shard 1/2").exit_code, 0);
+  write_file(tmp.file("env1.toml"), "obstacles = [{ x = 0.4, y = 0.4, w = 0.3, h = 0.2 }]\n");
+  ASSERT_EQ(run_chaosweep(sweep + tmp.file("edited1.h5") + " --shard 1/2").exit_code, 0);
+  const auto r = run_chaosweep("merge -o " + tmp.file("m.h5") + " " + tmp.file("s0.h5") + " " + tmp.file("edited1.h5"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(has(r.err, tmp.file("edited1.h5") + " was made with other input files than " + tmp.file("s0.h5") + ": " +
+                             tmp.file("env1.toml") + " changed (environment '" + tmp.file("env1.toml") + "')"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(tmp.file("m.h5")) || fs::exists(tmp.file("m.h5.partial")));
+  // The shards made on one map merge, and the merged file keeps the record.
+  const auto ok = run_chaosweep("merge -o " + tmp.file("m.h5") + " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5"));
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(chaosweep::read_attribute(tmp.file("m.h5"), "inputs_hash"),
+            chaosweep::read_attribute(tmp.file("s0.h5"), "inputs_hash"));
+  EXPECT_TRUE(has(chaosweep::read_attribute(tmp.file("m.h5"), "input_files"), tmp.file("env1.toml")));
+  // A shard that records no input files (an older chaosweep) cannot be checked: refused.
+  delete_attribute(tmp.file("s1.h5"), "inputs_hash");
+  const auto old = run_chaosweep("merge -o " + tmp.file("m2.h5") + " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5"));
+  EXPECT_EQ(old.exit_code, 2) << old.err;
+  EXPECT_TRUE(has(old.err, tmp.file("s1.h5") + " does not record its input files (written by an older chaosweep)")) << old.err;
 }
