@@ -179,6 +179,14 @@ Environment parse_text(const std::string& text, const std::string& path, double 
     if (!(spec.max_side + 2 * spec.gap < std::min(env.lx, env.ly)))
       fail(path, "clutter.max_side + 2 gap = " + format_number(spec.max_side + 2 * spec.gap) +
                      " m does not fit in the map (" + format_number(env.lx) + " x " + format_number(env.ly) + " m)");
+    // Squares so small that the occupancy needs more of them than the
+    // generator tries are a typo (1e-9 for 0.1), not a map.
+    const double most = spec.occupancy * env.lx * env.ly / (spec.min_side * spec.min_side);
+    if (most > max_clutter_attempts)
+      fail(path, "clutter.occupancy = " + format_number(spec.occupancy) + " with squares of min_side = " +
+                     format_number(spec.min_side) + " m takes up to " + format_number(most) + " squares (more than " +
+                     std::to_string(max_clutter_attempts) +
+                     ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
     if (clutter_seed) spec.seed = *clutter_seed;
     const auto start = env.start.value_or(std::pair{0.5, 0.5});
     for (const Rect& r : generate_clutter(env.lx, env.ly, spec, start.first, start.second))
@@ -187,6 +195,7 @@ Environment parse_text(const std::string& text, const std::string& path, double 
   } else if (clutter_seed) {
     fail(path, "':SEED' is only for environments with a 'clutter' table");
   }
+  env.index_obstacles();
   // The file's own start must be a place a run can start from (a run's own
   // start, which wins over it, is checked when the run starts).
   if (env.start) {

@@ -74,7 +74,7 @@ TEST(CliSweep, AnOutputPathThatCannotBeAFileIsRefusedBeforeTheFirstRun) {
   }
   // Every command that writes a file refuses a directory, --force or not.
   write_file(tmp.file("work/r.h5"), "");
-  for (const std::string& cmd :
+  for (const char* cmd :
        {"merge -o outdir r.h5", "table summary -o outdir --force r.h5", "run --trace outdir --force --size 10"}) {
     const auto r = run_chaosweep(cmd, in_work);
     EXPECT_EQ(r.exit_code, 2) << cmd << ": " << r.err;

@@ -179,3 +179,24 @@ TEST(SweepSpec, ASpecThatSetsNothingIsRefused) {
   // A spec that only names itself is one run of the defaults, as asked.
   EXPECT_EQ(parse_sweep_spec("[sweep]\nname = \"defaults\"\n", "spec.toml").size(), 1);
 }
+
+TEST(Environment, ClutterOfSquaresTooSmallForItsOccupancyIsRefused) {
+  // 1e-9 of a 10 m map: 5e17 squares to reach 50%. The generator tried
+  // 100,000 of them, each against every square placed: it seemed to hang.
+  try {
+    parse_environment("clutter = { seed = 1, occupancy = 0.5, min_side = 1e-9, max_side = 2e-9, gap = 0 }\n", "env.toml",
+                      10, 10);
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(has(e.what(), "environment env.toml: clutter.occupancy = 0.5 with squares of min_side = 1e-08 m takes up "
+                              "to 5e+17 squares (more than 100000, the generator's attempts): raise clutter.min_side or "
+                              "lower clutter.occupancy"))
+        << e.what();
+  }
+  // Many small squares within the bound: generated, and indexed for the run.
+  const Environment env =
+      parse_environment("clutter = { seed = 1, occupancy = 0.1, min_side = 0.005, max_side = 0.006, gap = 0.001 }\n",
+                        "env.toml", 10, 10);
+  EXPECT_GT(env.obstacles.size(), 1000u);
+  EXPECT_NE(env.usable_index(), nullptr);
+}
