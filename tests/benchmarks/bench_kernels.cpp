@@ -52,14 +52,8 @@ void BM_rk4_step_scalar(benchmark::State& state) {
 }
 BENCHMARK(BM_rk4_step_scalar);
 
-// A whole run (integration, boundary, supercover marking, coverage check),
-// reported per integration step.
-void BM_run_original_50m_sr1(benchmark::State& state) {
-  RunParams p;
-  p.size_x = p.size_y = 50;
-  p.sr = 1;
-  p.start_x = p.start_y = 0.5;
-  Environment env;
+// Runs p on env once per iteration, reporting seconds per integration step.
+void time_runs(benchmark::State& state, const RunParams& p, const Environment& env) {
   std::int64_t steps = 0;
   for (auto _ : state) {
     const RunResult r = run_planner(p, env);
@@ -69,6 +63,16 @@ void BM_run_original_50m_sr1(benchmark::State& state) {
   // Seconds per step, printed with an SI prefix (e.g. 540n).
   state.counters["s_per_step"] =
       benchmark::Counter(double(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// A whole run (integration, boundary, supercover marking, coverage check),
+// reported per integration step.
+void BM_run_original_50m_sr1(benchmark::State& state) {
+  RunParams p;
+  p.size_x = p.size_y = 50;
+  p.sr = 1;
+  p.start_x = p.start_y = 0.5;
+  time_runs(state, p, Environment{});
 }
 BENCHMARK(BM_run_original_50m_sr1)->Unit(benchmark::kMillisecond);
 
@@ -107,14 +111,7 @@ void BM_run_among_obstacles(benchmark::State& state) {
   p.sr = 2;
   p.start_x = p.start_y = 0.1;
   p.max_time = 500;
-  std::int64_t steps = 0;
-  for (auto _ : state) {
-    const RunResult r = run_planner(p, env);
-    steps += r.steps;
-    benchmark::DoNotOptimize(r.coverage_time);
-  }
-  state.counters["s_per_step"] =
-      benchmark::Counter(double(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  time_runs(state, p, env);
 }
 BENCHMARK(BM_run_among_obstacles)->Arg(5)->Arg(1000)->Arg(9000)->Unit(benchmark::kMillisecond);
 
