@@ -122,8 +122,21 @@ void add_force_flag(CLI::App& cmd, bool& force) {
   cmd.add_flag("--force", force, "replace output files that already exist");
 }
 
+void check_output_path(const std::string& path, const std::string& flag) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw OutputPathError(flag + ": the output path is empty: give a file name");
+  if (fs::is_directory(path))
+    throw OutputPathError(flag + ": " + path + " is a directory: give a file name (e.g. " +
+                          (fs::path(path) / "results.h5").string() + ")");
+  const std::string name = fs::path(path).filename().string();
+  if (name.empty() || name == "." || name == "..")
+    throw OutputPathError(flag + ": " + path + " names a directory, not a file: give a file name");
+}
+
 void check_output_free(const std::string& path, bool force, const std::string& flag, const std::string& more) {
-  if (force || path.empty() || !std::filesystem::exists(path)) return;
+  if (path.empty()) return;
+  check_output_path(path, flag);
+  if (force || !std::filesystem::exists(path)) return;
   throw OutputExists(flag + ": " + path + " exists; pass --force to replace it" + more);
 }
 

@@ -25,28 +25,39 @@ void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw);
 // Applies raw flag values; throws SpecError naming the flag.
 void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& run);
 
-// An output file that exists and may not be replaced (bad input: exit 2).
-struct OutputExists : std::runtime_error {
+// An output path that cannot be used (bad input: exit 2): empty, a
+// directory, or (OutputExists) a file that may not be replaced.
+struct OutputPathError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+struct OutputExists : OutputPathError {
+  using OutputPathError::OutputPathError;
 };
 
 // Adds --force to a command that writes files: results can be hours of work,
 // so no command replaces an existing file unless asked to.
 void add_force_flag(CLI::App& cmd, bool& force);
 
+// Throws OutputPathError naming `path` and `flag` (the option that gave it)
+// unless `path` can name an output file: not empty, not a directory, not
+// ending in a directory separator. Checked before any work, so that a bad
+// path is not found only when the finished file is moved into place.
+void check_output_path(const std::string& path, const std::string& flag = "-o");
+
 // Throws OutputExists naming `path` (and `flag`, the option that gave it)
-// when the file exists and `force` is not set; `more` ends the message.
+// when the file exists and `force` is not set; `more` ends the message. A
+// non-empty `path` must pass check_output_path (with or without `force`).
 void check_output_free(const std::string& path, bool force, const std::string& flag = "-o",
                        const std::string& more = "");
 
 // Runs a subcommand's body: BadInput (the module's error for bad input) and
-// OutputExists become a message and exit 2, any other exception a message
+// OutputPathError become a message and exit 2, any other exception a message
 // and exit 3.
 template <class BadInput, class Body>
 int run_reporting(const char* command, Body&& body) {
   try {
     return body();
-  } catch (const OutputExists& e) {
+  } catch (const OutputPathError& e) {
     std::cerr << "chaosweep " << command << ": " << e.what() << "\n";
     return exit_bad_input;
   } catch (const BadInput& e) {

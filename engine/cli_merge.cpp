@@ -10,8 +10,9 @@ namespace chaosweep {
 void add_merge_command(CLI::App& app, std::function<int()>& action) {
   auto* cmd = app.add_subcommand("merge", "Merge the shard files of one sweep into one result file");
   cmd->footer(
-      "Checks that every input comes from the same spec (spec_hash) and shard count, reports\n"
-      "missing and duplicated run_ids and which shards to re-run, and only when none is missing\n"
+      "Checks that every input comes from the same spec (spec_hash), the same environment files\n"
+      "(inputs_hash; a differing file is named) and shard count, reports missing and duplicated\n"
+      "run_ids and which shards to re-run, and only when none is missing\n"
       "or duplicated writes OUT with the rows sorted by run_id. Exit 0 merged, 1 incomplete,\n"
       "2 bad input. Example: chaosweep merge -o out/fig6.h5 out/fig6.shard*.h5");
   auto out = std::make_shared<std::string>();

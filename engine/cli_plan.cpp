@@ -7,10 +7,10 @@
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
 #include "lane_driver.hpp"
-#include "metrics.hpp"
 #include "param_table.hpp"
 #include "simd_choice.hpp"
 #include "sweep_runner.hpp"
+#include "work_bound.hpp"
 
 namespace chaosweep {
 
@@ -82,17 +82,12 @@ void add_plan_command(CLI::App& app, std::function<int()>& action) {
       SweepSpec spec;
       EnvironmentCache cache;
       SimdTarget target;
-      double bound_steps = 0;
+      WorkBound work;
       try {
         target = selected_simd_target();
         spec = load_sweep_spec(*spec_path);
-        for (std::int64_t i = 0; i < spec.size(); ++i) {
-          const RunTuple t = resolve_run(i, spec.run(i), cache);
-          const RunParams& p = t.params;
-          const double free_area = t.env->lx * t.env->ly - t.env->obstacle_area();
-          const double budget = p.max_time > 0 ? p.max_time : p.max_pr * t_opt(p.dc, free_area, p.sr, p.v);
-          bound_steps += std::ceil(budget / (p.planner == Planner::logistic ? p.dt_c : p.f * p.dt));
-        }
+        preload_environments(spec, cache);  // every map, named where the spec sets it, as sweep does
+        work = bound_work(spec, cache);
       } catch (const std::exception& e) {
         std::cerr << "chaosweep plan: " << e.what() << "\n";
         return exit_bad_input;
@@ -130,10 +125,13 @@ void add_plan_command(CLI::App& app, std::function<int()>& action) {
       char buf[256];
       const double ns = calibrate(spec, cache, target);
       std::snprintf(buf, sizeof buf,
-                    "work        at most %.3g integration steps (every run to its time budget; most end sooner)\n"
+                    "work        at most %s%.3g integration steps (every run to its time budget; most end sooner)\n"
                     "            %.1f ns per lane-step measured here (%s kernels) -> at most %.3g core-hours\n",
-                    bound_steps, ns, to_string(target), bound_steps * ns * 1e-9 / 3600);
+                    work.sampled ? "about " : "", work.steps, ns, to_string(target), work.steps * ns * 1e-9 / 3600);
       std::cout << buf;
+      if (work.sampled)
+        std::cout << "            (estimated from " << work.evaluated
+                  << " runs drawn at random: the axes that set time budgets have too many combinations to walk)\n";
       return exit_ok;
     };
   });

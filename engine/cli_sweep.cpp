@@ -6,6 +6,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -15,9 +17,9 @@
 #include "disk_room.hpp"
 #include "cli_subcommands.hpp"
 #include "h5_store.hpp"
+#include "input_identity.hpp"
 #include "output_lock.hpp"
 #include "progress.hpp"
-#include "run_hash.hpp"
 #include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 #include "sweep_summary.hpp"
@@ -38,28 +40,59 @@ struct Shard {
   int index = 0, count = 1;
 };
 
-// "K/N", or SLURM_ARRAY_TASK_ID (minus SLURM_ARRAY_TASK_MIN) of SLURM_ARRAY_TASK_COUNT.
-Shard parse_shard(const std::string& text) {
+// A SLURM_ARRAY_* variable: unset, or a whole number in [0, 2^31) (anything
+// else is refused naming it: a mistyped value must not run the whole sweep).
+std::optional<int> slurm_number(const char* name) {
+  const char* v = std::getenv(name);
+  if (!v) return std::nullopt;
+  const std::string text(v);
+  if (!text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos) {
+    const long long n = std::stoll(text);
+    if (n <= std::numeric_limits<int>::max()) return int(n);
+  }
+  throw SpecError(std::string(name) + " = '" + text +
+                  "' is not a whole number in [0, 2147483647] (a SLURM job array sets it; pass --shard K/N to "
+                  "choose the shard yourself)");
+}
+
+// The shard of a SLURM array task: (SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN)
+// / SLURM_ARRAY_TASK_STEP of SLURM_ARRAY_TASK_COUNT; no shard (the whole
+// sweep) when neither the ID nor the COUNT is set.
+Shard slurm_shard() {
   Shard s;
-  if (text.empty()) {
-    const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
-    const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
-    if (!id || !count) return s;
-    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
-    s.index = std::atoi(id) - (min ? std::atoi(min) : 0);
-    s.count = std::atoi(count);
-  } else {
-    const auto slash = text.find('/');
-    try {
-      if (slash == std::string::npos) throw std::invalid_argument("");
-      std::size_t used = 0;
-      s.index = std::stoi(text.substr(0, slash), &used);
-      if (used != slash) throw std::invalid_argument("");
-      s.count = std::stoi(text.substr(slash + 1), &used);
-      if (used != text.size() - slash - 1) throw std::invalid_argument("");
-    } catch (const std::exception&) {
-      throw SpecError("--shard: '" + text + "' is not K/N (e.g. 0/4)");
-    }
+  const auto id = slurm_number("SLURM_ARRAY_TASK_ID"), count = slurm_number("SLURM_ARRAY_TASK_COUNT");
+  const auto min = slurm_number("SLURM_ARRAY_TASK_MIN"), step = slurm_number("SLURM_ARRAY_TASK_STEP");
+  if (!id && !count) return s;
+  if (!id || !count)
+    throw SpecError(std::string(id ? "SLURM_ARRAY_TASK_ID" : "SLURM_ARRAY_TASK_COUNT") + " is set but " +
+                    (id ? "SLURM_ARRAY_TASK_COUNT" : "SLURM_ARRAY_TASK_ID") +
+                    " is not: cannot tell this task's shard (pass --shard K/N)");
+  const std::string vars = "SLURM_ARRAY_TASK_ID = " + std::to_string(*id) + ", SLURM_ARRAY_TASK_MIN = " +
+                           std::to_string(min.value_or(0)) + ", SLURM_ARRAY_TASK_STEP = " +
+                           std::to_string(step.value_or(1)) + ", SLURM_ARRAY_TASK_COUNT = " + std::to_string(*count);
+  const int offset = *id - min.value_or(0), stride = step.value_or(1);
+  if (stride < 1 || offset < 0 || offset % stride != 0 || *count < 1 || offset / stride >= *count)
+    throw SpecError(vars + ": not a task of the array (need MIN <= ID, (ID - MIN) / STEP a whole number below "
+                           "COUNT); pass --shard K/N");
+  s.index = offset / stride;
+  s.count = *count;
+  return s;
+}
+
+// "K/N", or the SLURM array task's shard (slurm_shard) when no --shard is given.
+Shard parse_shard(const std::string& text) {
+  if (text.empty()) return slurm_shard();
+  Shard s;
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("");
+    std::size_t used = 0;
+    s.index = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("");
+    s.count = std::stoi(text.substr(slash + 1), &used);
+    if (used != text.size() - slash - 1) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw SpecError("--shard: '" + text + "' is not K/N (e.g. 0/4)");
   }
   if (s.count < 1 || s.index < 0 || s.index >= s.count)
     throw SpecError("--shard: index " + std::to_string(s.index) + " of " + std::to_string(s.count) +
@@ -98,7 +131,8 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
                   "and SLURM_ARRAY_TASK_COUNT when set")
       ->type_name("K/N");
   cmd->add_flag("--resume", o->resume,
-                "continue OUT.partial of the same spec and shard (or do nothing if OUT is complete)");
+                "continue OUT.partial of the same spec, environment files and shard (or do nothing if OUT is "
+                "complete)");
   cmd->add_flag("--force", o->force,
                 "run even though OUT (replaced when this sweep completes) or OUT.partial (started over) exists");
   cmd->add_option("--batch", o->batch, "runs per write to OUT.partial")->check(CLI::Number)->check(CLI::Range(1, 1 << 24));
@@ -124,19 +158,19 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
         return exit_bad_input;
       }
       const std::string partial = o->out + ".partial";
-      const std::string spec_hash = hex64(fnv1a64(spec.text));
+      const SweepInputs inputs = sweep_inputs(spec, cache);  // the spec and every environment file it loaded
       const std::int64_t shard_runs = shard_size(spec.size(), shard.index, shard.count);
       std::int64_t skip = 0;
       std::unique_ptr<OutputLock> lock;
       bool resuming = false;
       try {
+        check_output_path(o->out, "-o");
         if (!o->resume)
           check_output_free(o->out, o->force, "-o", " (kept until this sweep completes), or --resume to keep it");
         lock = std::make_unique<OutputLock>(o->out);  // from here on, this process is OUT's only writer
         resuming = o->resume && fs::exists(partial);
         if (o->resume && !fs::exists(partial) && fs::exists(o->out)) {
-          if (read_attribute(o->out, "spec_hash") != spec_hash)
-            throw std::runtime_error(o->out + " is complete but holds another spec's runs");
+          check_same_inputs(o->out, inputs);
           if (!o->quiet) std::cout << o->out << " is complete: nothing to resume\n";
           return exit_ok;
         }
@@ -144,8 +178,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
           throw std::runtime_error(partial + " exists (an interrupted sweep): pass --resume to continue it, "
                                    "or --force to start over");
         if (resuming) {
-          if (read_attribute(partial, "spec_hash") != spec_hash)
-            throw std::runtime_error(partial + " holds another spec's runs (spec_hash differs)");
+          check_same_inputs(partial, inputs);
           if (read_attribute(partial, "shard") != std::to_string(shard.index) + "/" + std::to_string(shard.count))
             throw std::runtime_error(partial + " holds shard " + read_attribute(partial, "shard") + ", not " +
                                      std::to_string(shard.index) + "/" + std::to_string(shard.count));
@@ -187,7 +220,9 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
           writer.set_attribute("git_commit", git_commit());
           writer.set_attribute("git_dirty", git_dirty() ? "true" : "false");
           writer.set_attribute("spec", spec.text);
-          writer.set_attribute("spec_hash", spec_hash);
+          writer.set_attribute("spec_hash", inputs.spec_hash);
+          writer.set_attribute("inputs_hash", inputs.hash());
+          writer.set_attribute("input_files", inputs.text());
           writer.set_attribute("spec_path", o->spec);
           writer.set_attribute("spec_name", spec.name);
           writer.set_attribute("runs_total", std::to_string(spec.size()));

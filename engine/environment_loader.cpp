@@ -2,7 +2,6 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <cmath>
@@ -10,6 +9,8 @@
 #include "toml.hpp"
 
 #include "clutter.hpp"
+#include "input_file.hpp"
+#include "run_hash.hpp"
 
 namespace chaosweep {
 
@@ -62,6 +63,7 @@ Environment parse_text(const std::string& text, const std::string& path, double 
   try {
     check_toml_text(text);
     t = toml::parse(text, path);
+    check_toml_integers(t);
   } catch (const TomlInputError& e) {
     fail(path, e.what());
   } catch (const toml::parse_error& e) {
@@ -177,6 +179,14 @@ Environment parse_text(const std::string& text, const std::string& path, double 
     if (!(spec.max_side + 2 * spec.gap < std::min(env.lx, env.ly)))
       fail(path, "clutter.max_side + 2 gap = " + format_number(spec.max_side + 2 * spec.gap) +
                      " m does not fit in the map (" + format_number(env.lx) + " x " + format_number(env.ly) + " m)");
+    // Squares so small that the occupancy needs more of them than the
+    // generator tries are a typo (1e-9 for 0.1), not a map.
+    const double most = spec.occupancy * env.lx * env.ly / (spec.min_side * spec.min_side);
+    if (most > max_clutter_attempts)
+      fail(path, "clutter.occupancy = " + format_number(spec.occupancy) + " with squares of min_side = " +
+                     format_number(spec.min_side) + " m takes up to " + format_number(most) + " squares (more than " +
+                     std::to_string(max_clutter_attempts) +
+                     ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
     if (clutter_seed) spec.seed = *clutter_seed;
     const auto start = env.start.value_or(std::pair{0.5, 0.5});
     for (const Rect& r : generate_clutter(env.lx, env.ly, spec, start.first, start.second))
@@ -185,6 +195,7 @@ Environment parse_text(const std::string& text, const std::string& path, double 
   } else if (clutter_seed) {
     fail(path, "':SEED' is only for environments with a 'clutter' table");
   }
+  env.index_obstacles();
   // The file's own start must be a place a run can start from (a run's own
   // start, which wins over it, is checked when the run starts).
   if (env.start) {
@@ -198,12 +209,15 @@ Environment parse_text(const std::string& text, const std::string& path, double 
 }
 
 Environment parse_file(const std::string& path, double size_x, double size_y,
-                       std::optional<std::uint64_t> clutter_seed) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot read the environment file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_text(text.str(), path, size_x, size_y, clutter_seed);
+                       std::optional<std::uint64_t> clutter_seed, InputRecord* source) {
+  std::string text;
+  try {
+    text = read_input_file(path, "the environment file");
+  } catch (const InputFileError& e) {
+    throw std::runtime_error(std::string("environment ") + e.what());
+  }
+  if (source) *source = {path, fnv1a64(text)};
+  return parse_text(text, path, size_x, size_y, clutter_seed);
 }
 
 }  // namespace
@@ -228,7 +242,7 @@ std::string find_environment_file(const std::string& name) {
   return {};
 }
 
-Environment load_environment(const std::string& spec, double size_x, double size_y) {
+Environment load_environment(const std::string& spec, double size_x, double size_y, InputRecord* source) {
   if (spec == "empty" || spec.empty()) {
     Environment env;
     env.name = "empty";
@@ -252,7 +266,7 @@ Environment load_environment(const std::string& spec, double size_x, double size
     throw std::runtime_error("environment '" + spec +
                              "' not found: give a path to a .toml file, \"empty\", or a name "
                              "from experiments/envs/");
-  return parse_file(path, size_x, size_y, seed);
+  return parse_file(path, size_x, size_y, seed, source);
 }
 
 std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x,
@@ -261,9 +275,16 @@ std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec
   auto key = std::tuple{spec, size_x, size_y};
   auto it = cache_.find(key);
   if (it != cache_.end()) return it->second;
-  auto env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y));
+  InputRecord source;
+  auto env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y, &source));
   cache_.emplace(key, env);
+  if (!source.path.empty()) files_[spec] = source;
   return env;
+}
+
+std::map<std::string, InputRecord> EnvironmentCache::files() const {
+  std::lock_guard lock(mutex_);
+  return files_;
 }
 
 }  // namespace chaosweep

@@ -8,14 +8,17 @@
 #include <tuple>
 
 #include "environment.hpp"
+#include "input_file.hpp"
 
 namespace chaosweep {
 
 // Loads `spec` (a built-in name such as "empty", a name found as
 // experiments/envs/NAME.toml, or a path to a .toml file) for a map whose
 // side is size_x x size_y unless the file fixes its own size.
-// Throws std::runtime_error naming the file and the offending key.
-Environment load_environment(const std::string& spec, double size_x, double size_y);
+// Throws std::runtime_error naming the file and the offending key. When a
+// file is read and `source` is given, it receives the file's path and hash.
+Environment load_environment(const std::string& spec, double size_x, double size_y,
+                             InputRecord* source = nullptr);
 // The same from the file's text (`source_name` for messages); for tools and
 // the fuzz target. Throws std::runtime_error naming the source and the key.
 Environment parse_environment(const std::string& text, const std::string& source_name, double size_x,
@@ -29,10 +32,14 @@ std::string find_environment_file(const std::string& name);
 class EnvironmentCache {
  public:
   std::shared_ptr<const Environment> get(const std::string& spec, double size_x, double size_y);
+  // The file behind each environment loaded so far that came from one,
+  // keyed by the name the spec gives ("one_square", "envs/box.toml:3").
+  std::map<std::string, InputRecord> files() const;
 
  private:
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::map<std::tuple<std::string, double, double>, std::shared_ptr<const Environment>> cache_;
+  std::map<std::string, InputRecord> files_;
 };
 
 }  // namespace chaosweep

@@ -12,6 +12,7 @@
 
 #include "cli_common.hpp"
 #include "h5_store.hpp"
+#include "input_identity.hpp"
 
 namespace chaosweep {
 
@@ -91,6 +92,7 @@ std::vector<std::string> attribute_names(const std::string& path) {
 // A shard file's place in its sweep, from its provenance attributes.
 struct ShardOf {
   std::string spec_hash, shard;  // shard as written: "K/N"
+  std::string inputs_hash;       // "" when not recorded (an older chaosweep)
   int count = 1;
   std::int64_t runs_total = 0;
 };
@@ -99,6 +101,10 @@ ShardOf shard_of(const std::string& path) {
   ShardOf s;
   s.spec_hash = read_attribute(path, "spec_hash");  // throws naming the file
   s.shard = read_attribute(path, "shard");
+  try {
+    s.inputs_hash = read_attribute(path, "inputs_hash");
+  } catch (const std::exception&) {
+  }
   const std::string total = read_attribute(path, "runs_total");
   int k = -1;
   char tail = 0;
@@ -113,6 +119,17 @@ ShardOf shard_of(const std::string& path) {
     fail(path + ": attribute 'runs_total' is '" + total + "', not a run count");
   }
   return s;
+}
+
+// Why shard `path` cannot be merged with `first` though their spec is the
+// same: the environment files differ (named), or `path` records none.
+std::string different_inputs(const std::string& path, const std::string& first, bool unrecorded) {
+  if (unrecorded)
+    return path + " does not record its input files (written by an older chaosweep): whether its environment "
+                  "files match " + first + "'s cannot be checked";
+  const std::string changes = changed_inputs(read_attribute(first, "input_files"), read_attribute(path, "input_files"));
+  return path + " was made with other input files than " + first + ": " +
+         (changes.empty() ? "inputs_hash differs" : changes);
 }
 
 }  // namespace
@@ -149,6 +166,8 @@ MergeReport merge_results(const std::vector<std::string>& inputs, const std::str
   for (std::size_t f = 0; f < inputs.size(); ++f) {
     if (shards[f].spec_hash != shards[0].spec_hash)
       fail(inputs[f] + " comes from another spec than " + inputs[0] + " (spec_hash differs)");
+    if (shards[f].inputs_hash.empty() || shards[f].inputs_hash != shards[0].inputs_hash)
+      fail(different_inputs(inputs[f], inputs[0], shards[f].inputs_hash.empty()));
     if (shards[f].count != report.shard_count)
       fail(inputs[f] + " is shard " + shards[f].shard + " but " + inputs[0] + " has " +
            std::to_string(report.shard_count) + " shards");

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <sstream>
@@ -10,6 +10,7 @@
 
 #include "decimal_range.hpp"
 #include "param_table.hpp"
+#include "run_hash.hpp"
 #include "splitmix.hpp"
 
 namespace chaosweep {
@@ -443,7 +444,9 @@ Axis parse_sample(const toml::table& t, const std::string& where, const KeyUse& 
 toml::table parse_toml(const std::string& text, const std::string& source_name) {
   try {
     check_toml_text(text);
-    return toml::parse(text, source_name);
+    toml::table t = toml::parse(text, source_name);
+    check_toml_integers(t);
+    return t;
   } catch (const toml::parse_error& e) {
     std::ostringstream os;
     os << e.description() << " (line " << e.source().begin.line << ")";
@@ -454,11 +457,25 @@ toml::table parse_toml(const std::string& text, const std::string& source_name) 
 }
 
 std::string read_text(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
-  if (!in) throw SpecError(path + ": cannot open " + what);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  try {
+    return read_input_file(path, what);
+  } catch (const InputFileError& e) {
+    throw SpecError(e.what());
+  }
+}
+
+// A spec file being read, and the files it is being read for: the `extends`
+// chain from the spec given down to it.
+struct ChainLink {
+  std::string name;  // as messages name it
+  std::filesystem::path canonical;
+};
+using ExtendsChain = std::vector<ChainLink>;
+
+ChainLink link_of(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::path c = std::filesystem::weakly_canonical(path, ec);
+  return {path, ec ? std::filesystem::path(path) : c};
 }
 
 }  // namespace
@@ -603,7 +620,10 @@ SpecPart parse_part(const toml::table& t, std::size_t index, const std::string& 
 
 }  // namespace
 
-SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name, const std::string& dir) {
+namespace {
+
+SweepSpec parse_spec(const std::string& text, const std::string& source_name, const std::string& dir,
+                     ExtendsChain& chain) {
   toml::table root = parse_toml(text, source_name);
   SweepSpec spec;
   for (auto&& [k, node] : root) {
@@ -617,6 +637,16 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
       fail(source_name, "'" + key + "' must be a table");
     }
   }
+  // An empty spec (no file, only comments, only empty tables) would be one
+  // run of the default parameters: almost surely the wrong file.
+  bool empty = true;
+  for (auto&& [k, node] : root) {
+    if (const toml::table* t = node.as_table()) empty = empty && t->empty();
+    else if (const toml::array* a = node.as_array()) empty = empty && a->empty();
+  }
+  if (empty)
+    fail(source_name, "the spec is empty (it sets nothing): it would be one run of the default parameters; give "
+                      "[fixed] settings, [axes] or sweep.extends");
   UsedKeys used;  // keys set outside parts, and where
   // Keys the extended spec's parts set: the top level must not set them too.
   UsedKeys inherited_part_keys;
@@ -634,9 +664,22 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
     if (auto e = (*s)["extends"].value<std::string>()) {
       // Start from another spec: its fixed settings, axes and parts come first.
       const std::string path = e->starts_with("/") ? *e : dir + "/" + *e;
+      // A chain that comes back to one of its specs would recurse forever.
+      const ChainLink link = link_of(path);
+      for (std::size_t k = 0; k < chain.size(); ++k) {
+        if (chain[k].canonical != link.canonical) continue;
+        if (k + 1 == chain.size()) fail(source_name + ": sweep.extends", "\"" + *e + "\" is this spec itself: a spec cannot extend itself");
+        std::string cycle;
+        for (std::size_t j = k; j < chain.size(); ++j) cycle += chain[j].name + " -> ";
+        fail(source_name + ": sweep.extends", "\"" + *e + "\" makes a cycle of extended specs: " + cycle + path);
+      }
       const std::string parent_text = read_text(path, "the spec named by sweep.extends");
       const auto slash = path.find_last_of('/');
-      SweepSpec parent = parse_sweep_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash));
+      chain.push_back(link);
+      SweepSpec parent = parse_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash), chain);
+      chain.pop_back();
+      spec.files.push_back({path, fnv1a64(parent_text)});
+      spec.files.insert(spec.files.end(), parent.files.begin(), parent.files.end());
       if (parent.repeat && root["repeat"]) fail(source_name + ": repeat", "the extended spec has a [repeat] already");
       spec.base = parent.base;
       spec.axes = parent.axes;
@@ -665,8 +708,9 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
       const std::string where = source_name + ": fixed." + key;
       if (const auto it = top.find(key); it != top.end())
         fail(where, "is also set by " + it->second.origin + "; give it in one place");
+      const SpecValue v = to_value(node, where);  // its errors name `where` already
       try {
-        apply_setting(spec.base, key, to_value(node, where));
+        apply_setting(spec.base, key, v);
       } catch (const SpecError& e) {
         fail(where, e.what());
       }
@@ -725,10 +769,19 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
   return spec;
 }
 
+}  // namespace
+
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name, const std::string& dir) {
+  ExtendsChain chain;
+  return parse_spec(text, source_name, dir, chain);
+}
+
 SweepSpec load_sweep_spec(const std::string& path) {
   const auto slash = path.find_last_of('/');
-  SweepSpec s = parse_sweep_spec(read_text(path, "the sweep spec"), path,
-                                 slash == std::string::npos ? "." : path.substr(0, slash));
+  const std::string text = read_text(path, "the sweep spec");
+  ExtendsChain chain{link_of(path)};
+  SweepSpec s = parse_spec(text, path, slash == std::string::npos ? "." : path.substr(0, slash), chain);
+  s.files.insert(s.files.begin(), InputRecord{path, fnv1a64(text)});
   if (s.name.empty()) {
     std::string stem = path.substr(slash == std::string::npos ? 0 : slash + 1);
     s.name = stem.substr(0, stem.rfind('.'));

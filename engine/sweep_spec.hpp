@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "input_file.hpp"
 #include "run_params.hpp"
 
 namespace chaosweep {
@@ -89,6 +90,9 @@ struct SweepSpec {
   std::string name;
   std::string description;
   std::string text;  // the spec as written (with any extended spec), for provenance
+  // The files it was read from: the spec itself (when loaded from a file),
+  // then each spec it extends, in the order read.
+  std::vector<InputRecord> files;
   RunSpec base;
   // Without parts: the axes of the one product. With parts: the axes every
   // part shares, varying faster than the part's own.
@@ -118,7 +122,9 @@ struct MapVariant {
   std::string origin;
 };
 
-// `source_name` is used in messages; `dir` resolves `extends`.
+// `source_name` is used in messages; `dir` resolves `extends`. A spec
+// that sets nothing, or an `extends` chain that comes back to a spec of the
+// chain, is refused (SpecError).
 SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name,
                            const std::string& dir = ".");
 SweepSpec load_sweep_spec(const std::string& path);

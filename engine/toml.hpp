@@ -39,3 +39,12 @@ void check_toml_text(const std::string& text);
 #define NDEBUG
 #undef CHAOSWEEP_TOML_NDEBUG
 #endif
+
+namespace chaosweep {
+// Call after toml::parse. toml++ keeps an integer as int64, and its
+// value<double>() is empty for one beyond +-2^53 (not exact as a double);
+// reading that as a number read garbage ("num = 9223372036854775807 ...
+// not 4.67053e-310"). Such integers are refused anywhere in the document:
+// throws TomlInputError naming the key ("axes.A.num = ... is too large").
+void check_toml_integers(const toml::table& root);
+}  // namespace chaosweep

@@ -1,5 +1,6 @@
 #include "toml.hpp"
 
+#include <cstdint>
 #include <cstdio>
 
 namespace chaosweep {
@@ -19,7 +20,26 @@ bool unsafe_code_point(unsigned cp) {
          (cp >= 0xFB26 && cp <= 0xFEFE);
 }
 
+// Walks `node`, `path` naming it as a spec's messages do ("axes.A.num",
+// "zip[0].sr[2]").
+void check_integers(const toml::node& node, const std::string& path) {
+  constexpr std::int64_t exact = std::int64_t(1) << 53;
+  if (const auto* i = node.as_integer()) {
+    const std::int64_t v = i->get();
+    if (v > exact || v < -exact)
+      throw TomlInputError(path + " = " + std::to_string(v) +
+                           " is too large: integers must lie within +-2^53 = +-9007199254740992, beyond which "
+                           "they are not exact as numbers");
+  } else if (const toml::table* t = node.as_table()) {
+    for (auto&& [k, child] : *t) check_integers(child, path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
+  } else if (const toml::array* a = node.as_array()) {
+    for (std::size_t j = 0; j < a->size(); ++j) check_integers(*a->get(j), path + "[" + std::to_string(j) + "]");
+  }
+}
+
 }  // namespace
+
+void check_toml_integers(const toml::table& root) { check_integers(root, ""); }
 
 void check_toml_text(const std::string& text) {
   long line = 1;

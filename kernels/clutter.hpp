@@ -14,8 +14,12 @@ struct ClutterSpec {
   double gap = 1.0;         // clearance between squares, the walls and the start, m
 };
 
+// Attempts at placing a square: the generator stops after this many even
+// when the occupancy is not reached (no more fit).
+inline constexpr int max_clutter_attempts = 100000;
+
 // Squares placed at random until their area reaches occupancy * lx * ly (or
-// no more fit after many tries). Deterministic in spec.seed.
+// no more fit after max_clutter_attempts tries). Deterministic in spec.seed.
 std::vector<Rect> generate_clutter(double lx, double ly, const ClutterSpec& spec, double start_x,
                                    double start_y);
 

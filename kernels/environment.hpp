@@ -2,11 +2,14 @@
 // The workspace a run happens in: a rectangle [0,lx] x [0,ly] with static
 // axis-aligned rectangular obstacles (SPEC 1). Pure data; loading from files
 // is the engine's job.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace chaosweep {
+
+class ObstacleIndex;
 
 struct Rect {
   double x0, y0, x1, y1;  // lower-left and upper-right corners, metres
@@ -20,13 +23,20 @@ struct Environment {
   // Start point suggested by the environment (metres); a run's own start wins.
   std::optional<std::pair<double, double>> start;
 
-  // Index of the obstacle containing (x, y) in its interior, or -1.
-  int obstacle_at(double x, double y) const {
-    for (std::size_t i = 0; i < obstacles.size(); ++i)
-      if (obstacles[i].contains(x, y)) return static_cast<int>(i);
-    return -1;
-  }
+  // Index of the first obstacle containing (x, y) in its interior, or -1.
+  int obstacle_at(double x, double y) const;
+  // Whether (x, y) lies inside an obstacle grown by fo on every side (the
+  // band where Eq. 8 pushes).
+  bool near_obstacle(double x, double y, double fo) const;
   double obstacle_area() const;  // area covered by obstacles, overlaps counted once
+
+  // A grid of buckets over the obstacles, built by index_obstacles() once the
+  // obstacles are final (the environment loader does): the queries above and
+  // push_out_of_obstacles then look at nearby obstacles only, with the same
+  // answers as a scan of them all. Used only while it covers every obstacle.
+  std::shared_ptr<const ObstacleIndex> index;
+  void index_obstacles();
+  const ObstacleIndex* usable_index() const;  // nullptr: scan every obstacle
 };
 
 // Eq. 8: a position inside an obstacle, or within fo of it, moves to the

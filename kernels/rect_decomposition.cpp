@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace chaosweep {
 
@@ -80,6 +81,12 @@ RectDecomposition decompose_free_space(const Environment& env, double radius) {
   unique_sorted(d.xs);
   unique_sorted(d.ys);
   const int nx = int(d.xs.size()) - 1, ny = int(d.ys.size()) - 1;
+  if (double(nx) * double(ny) > max_decomposition_cells)
+    throw std::invalid_argument("the edges of the " + std::to_string(env.obstacles.size()) +
+                                " obstacles cut the workplace into " + std::to_string(nx) + " x " + std::to_string(ny) +
+                                " cells, more than the Chebyshev decomposition's " +
+                                std::to_string(int(max_decomposition_cells)) +
+                                " (its merging grows faster than their square): use fewer obstacles");
   std::vector<int> id(std::size_t(nx * ny), -1);  // small rectangle of grid cell (i, j)
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {

@@ -9,11 +9,7 @@ namespace chaosweep {
 
 Zones::Zones(const Environment& env, const CoverageGrid& grid, int zx, int zy, bool free_goal, double fo)
     : lx_(env.lx), ly_(env.ly), zx_(zx), zy_(zy) {
-  auto clear = [&](double x, double y) {
-    for (const Rect& r : env.obstacles)
-      if (Rect{r.x0 - fo, r.y0 - fo, r.x1 + fo, r.y1 + fo}.contains(x, y)) return false;
-    return true;
-  };
+  auto clear = [&](double x, double y) { return !env.near_obstacle(x, y, fo); };
   base_.resize(static_cast<std::size_t>(count()));
   std::vector<double> best(base_.size(), std::numeric_limits<double>::infinity());
   for (int k = 0; k < count(); ++k) {

@@ -250,6 +250,49 @@ TEST(CliSweep, SigintStopsCleanlyAndResumeCompletes) { expect_signal_stops_clean
 
 TEST(CliSweep, SigtermStopsCleanlyAndResumeCompletes) { expect_signal_stops_cleanly_and_resume_completes(SIGTERM); }
 
+TEST(CliSweep, ResumeIsRefusedWhenAnEnvironmentFileChangedNamingIt) {
+  // The rows before the interruption were made on env1.toml as it was; the
+  // rest must not be made on an edited copy under the same name.
+  ASSERT_EQ(long_sweep.rfind("[fixed]\n", 0), 0u);
+  TempDir tmp;
+  const std::string box = "obstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n";
+  write_file(tmp.file("env1.toml"), box);
+  write_file(tmp.file("s.toml"), "[fixed]\nenv = \"" + tmp.file("env1.toml") + "\"\n" + long_sweep.substr(8));
+  const std::string args = tmp.file("s.toml") + " --threads 1 --batch 1000 -q -o " + tmp.file("r.h5");
+  const int pid = chaosweep::test::start_chaosweep("sweep " + args);
+  ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 1000, pid));
+  kill(pid, SIGINT);
+  ASSERT_EQ(chaosweep::test::wait_exit(pid), 128 + SIGINT);
+  const std::int64_t kept = chaosweep::count_rows(tmp.file("r.h5.partial"));
+  ASSERT_LT(kept, long_sweep_runs);
+  // Provenance names every file read, with its content hash.
+  const std::string files = chaosweep::read_attribute(tmp.file("r.h5.partial"), "input_files");
+  EXPECT_NE(files.find("spec\t"), std::string::npos) << files;
+  EXPECT_NE(files.find("\t" + tmp.file("s.toml") + "\n"), std::string::npos) << files;
+  EXPECT_NE(files.find("env\t"), std::string::npos) << files;
+  EXPECT_NE(files.find("\t" + tmp.file("env1.toml") + "\n"), std::string::npos) << files;
+  write_file(tmp.file("env1.toml"), "obstacles = [{ x = 0.4, y = 0.4, w = 0.3, h = 0.2 }]\n");
+  const auto refused = run_chaosweep("sweep " + args + " --resume");
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find(tmp.file("r.h5.partial") + " was made with other input files: " + tmp.file("env1.toml") +
+                             " changed (environment '" + tmp.file("env1.toml") + "')"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5.partial")), kept);  // untouched
+  // The map as it was: the resume completes and equals an uninterrupted sweep.
+  write_file(tmp.file("env1.toml"), box);
+  const auto resumed = run_chaosweep("sweep " + args + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const auto whole = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("whole.h5"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  expect_same_results(tmp.file("r.h5"), tmp.file("whole.h5"));
+  // A complete file checks its inputs too.
+  write_file(tmp.file("env1.toml"), "obstacles = [{ x = 0.1, y = 0.4, w = 0.3, h = 0.2 }]\n");
+  const auto done = run_chaosweep("sweep " + args + " --resume");
+  EXPECT_EQ(done.exit_code, 2) << done.err;
+  EXPECT_NE(done.err.find(tmp.file("r.h5") + " was made with other input files"), std::string::npos) << done.err;
+}
+
 TEST(CliSweep, SecondSweepOnTheSameOutputIsRefused) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), long_sweep);

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "arnold_flow.hpp"
+#include "coverage_grid.hpp"
+#include "environment.hpp"
 #include "lane_arrays.hpp"
 #include "planner.hpp"
 #include "sincos.hpp"
@@ -50,14 +52,8 @@ void BM_rk4_step_scalar(benchmark::State& state) {
 }
 BENCHMARK(BM_rk4_step_scalar);
 
-// A whole run (integration, boundary, supercover marking, coverage check),
-// reported per integration step.
-void BM_run_original_50m_sr1(benchmark::State& state) {
-  RunParams p;
-  p.size_x = p.size_y = 50;
-  p.sr = 1;
-  p.start_x = p.start_y = 0.5;
-  Environment env;
+// Runs p on env once per iteration, reporting seconds per integration step.
+void time_runs(benchmark::State& state, const RunParams& p, const Environment& env) {
   std::int64_t steps = 0;
   for (auto _ : state) {
     const RunResult r = run_planner(p, env);
@@ -68,7 +64,56 @@ void BM_run_original_50m_sr1(benchmark::State& state) {
   state.counters["s_per_step"] =
       benchmark::Counter(double(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+
+// A whole run (integration, boundary, supercover marking, coverage check),
+// reported per integration step.
+void BM_run_original_50m_sr1(benchmark::State& state) {
+  RunParams p;
+  p.size_x = p.size_y = 50;
+  p.sr = 1;
+  p.start_x = p.start_y = 0.5;
+  time_runs(state, p, Environment{});
+}
 BENCHMARK(BM_run_original_50m_sr1)->Unit(benchmark::kMillisecond);
+
+// A 100 m map of n 0.5 m squares on a 1.05 m pitch (issue 18: 9,000 of them
+// took over 100 s before the first step), indexed as the loader indexes it.
+Environment many_squares(int n) {
+  Environment env;
+  env.lx = env.ly = 100;
+  for (int k = 0; k < n; ++k) {
+    const double x = (k / 95) * 1.05 + 0.2, y = (k % 95) * 1.05 + 0.2;
+    env.obstacles.push_back({x, y, x + 0.5, y + 0.5});
+  }
+  env.index_obstacles();
+  return env;
+}
+
+// The geometry a run sets up before its first step: free area, blocked
+// cells, cells clear of Eq. 8.
+void BM_obstacle_setup(benchmark::State& state) {
+  const Environment env = many_squares(int(state.range(0)));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(env.obstacle_area());
+    const CoverageGrid grid(env, 1.0);
+    benchmark::DoNotOptimize(grid.free_cells());
+    benchmark::DoNotOptimize(cells_clear_of_obstacles(env, 0.5, grid.nx(), grid.ny(), 1.0).data());
+  }
+}
+BENCHMARK(BM_obstacle_setup)->Arg(5)->Arg(1000)->Arg(9000)->Unit(benchmark::kMillisecond);
+
+// A short run among them (most steps end near an obstacle: the scalar
+// planner and Eq. 8's push-out), reported per integration step.
+void BM_run_among_obstacles(benchmark::State& state) {
+  const Environment env = many_squares(int(state.range(0)));
+  RunParams p;
+  p.size_x = p.size_y = 100;
+  p.sr = 2;
+  p.start_x = p.start_y = 0.1;
+  p.max_time = 500;
+  time_runs(state, p, env);
+}
+BENCHMARK(BM_run_among_obstacles)->Arg(5)->Arg(1000)->Arg(9000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
