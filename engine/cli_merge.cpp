@@ -4,6 +4,7 @@
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
 #include "h5_merge.hpp"
+#include "slurm_dir.hpp"
 
 namespace chaosweep {
 
@@ -14,16 +15,29 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
       "(inputs_hash; a differing file is named) and shard count, reports missing and duplicated\n"
       "run_ids and which shards to re-run, and only when none is missing\n"
       "or duplicated writes OUT with the rows sorted by run_id. Exit 0 merged, 1 incomplete,\n"
-      "2 bad input. Example: chaosweep merge -o out/fig6.h5 out/fig6.shard*.h5");
+      "2 bad input. Example: chaosweep merge -o out/fig6.h5 out/fig6.shard*.h5\n"
+      "--slurm-dir DIR takes the shards of a `chaosweep slurm` directory (DIR/shard_K.h5 for each\n"
+      "task of DIR/cluster.toml) instead of a list, which for many tasks would not fit on a\n"
+      "command line.");
   auto out = std::make_shared<std::string>();
   auto inputs = std::make_shared<std::vector<std::string>>();
+  auto slurm_dir = std::make_shared<std::string>();
   auto force = std::make_shared<bool>(false);
   cmd->add_option("-o,--output", *out, "merged result file")->required();
-  cmd->add_option("shards", *inputs, "shard result files")->required()->check(CLI::ExistingFile);
+  auto* shards = cmd->add_option("shards", *inputs, "shard result files")->check(CLI::ExistingFile);
+  cmd->add_option("--slurm-dir", *slurm_dir, "the shards of this `chaosweep slurm` directory")
+      ->check(CLI::ExistingDirectory)
+      ->excludes(shards);
   add_force_flag(*cmd, *force);
-  cmd->callback([out, inputs, force, &action] {
-    action = [out, inputs, force]() -> int {
+  cmd->callback([out, inputs, slurm_dir, force, &action] {
+    action = [out, inputs, slurm_dir, force]() -> int {
       try {
+        if (!slurm_dir->empty()) {
+          *inputs = existing_shard_files(*slurm_dir);
+          if (inputs->empty()) throw std::runtime_error("--slurm-dir: " + *slurm_dir + " holds no shard file yet");
+        } else if (inputs->empty()) {
+          throw std::runtime_error("give the shard files, or --slurm-dir DIR");
+        }
         check_output_free(*out, *force);
         const MergeReport r = merge_results(*inputs, *out);
         std::cout << r.text() << "\n";

@@ -5,12 +5,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
-#include "toml.hpp"
+#include <map>
+#include <string_view>
 
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
+#include "embedded_files.hpp"
 #include "h5_store.hpp"
+#include "slurm_dir.hpp"
+#include "slurm_values.hpp"
 #include "sweep_runner.hpp"
 
 namespace chaosweep {
@@ -19,17 +22,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw std::runtime_error("cannot read " + p.string());
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void replace_all(std::string& s, const std::string& key, const std::string& value) {
-  for (std::size_t pos = 0; (pos = s.find(key, pos)) != std::string::npos; pos += value.size())
-    s.replace(pos, key.size(), value);
+// Replaces every @KEY@ of `text` in one pass (so a value holding "@SPEC@" is
+// not replaced again); an unknown key is an error in the template.
+std::string fill_template(std::string_view text, const std::map<std::string, std::string>& values) {
+  std::string out;
+  for (std::size_t pos = 0;;) {
+    const std::size_t at = text.find('@', pos);
+    if (at == std::string_view::npos) return out.append(text.substr(pos));
+    const std::size_t end = text.find('@', at + 1);
+    if (end == std::string_view::npos) throw std::runtime_error("job template: unpaired '@'");
+    const auto it = values.find(std::string(text.substr(at + 1, end - at - 1)));
+    if (it == values.end()) throw std::runtime_error("job template: unknown key " + std::string(text.substr(at, end - at + 1)));
+    out.append(text.substr(pos, at - pos)).append(it->second);
+    pos = end + 1;
+  }
 }
 
 std::string self_path() {
@@ -49,33 +55,13 @@ std::pair<int, std::string> capture(const std::string& cmd) {
   return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, out};
 }
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct ClusterPlan {
-  std::string spec, name;
-  int tasks = 1;
-  std::int64_t runs = 0;
-};
-
-ClusterPlan read_plan(const fs::path& dir) {
-  const fs::path file = dir / "cluster.toml";
-  if (!fs::exists(file)) throw std::runtime_error(dir.string() + " has no cluster.toml: not written by chaosweep slurm");
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  check_toml_text(text.str());
-  const toml::table t = toml::parse(text.str(), file.string());
-  ClusterPlan p;
-  p.spec = t["spec"].value_or(std::string());
-  p.name = t["name"].value_or(std::string());
-  p.tasks = int(t["tasks"].value_or(0));
-  p.runs = t["runs"].value_or(std::int64_t(0));
-  if (p.tasks < 1) throw std::runtime_error(file.string() + ": 'tasks' must be >= 1");
-  return p;
+// The job id `sbatch --parsable` printed ("ID" or "ID;CLUSTER"); it goes into
+// the next sbatch command line, so it must be digits.
+std::string job_id(const std::string& parsable) {
+  const std::string id = parsable.substr(0, parsable.find_first_of(";\n"));
+  if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+    throw std::runtime_error("sbatch printed '" + printable(parsable) + "', not a job id");
+  return id;
 }
 
 // Writes `text` to `path`, throwing when the file cannot be written in full.
@@ -86,6 +72,15 @@ void write_checked(const fs::path& path, const std::string& text) {
   if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
+// Bad input: a value that cannot go into a job script (exit 2).
+struct BadSlurmValue : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void require(const std::string& flag, const std::optional<std::string>& problem) {
+  if (problem) throw BadSlurmValue(flag + ": " + *problem);
+}
+
 }  // namespace
 
 void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
@@ -93,31 +88,49 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
   cmd->footer(
       "Writes DIR/sweep.sbatch (one shard per array task, --array=0-(N-1)[%M], logs in DIR/logs),\n"
       "DIR/merge.sbatch (merges DIR/shard_*.h5 into DIR/results.h5) and DIR/cluster.toml (for\n"
-      "`chaosweep status`). With --submit, calls sbatch for both, the merge job with\n"
-      "--dependency=afterok on the array. Example:\n"
+      "`chaosweep status` and `merge --slurm-dir`). With --submit, calls sbatch for both, the merge\n"
+      "job with --dependency=afterok on the array. Every value that goes into a script is checked\n"
+      "against the form SLURM accepts for it (exit 2 otherwise); paths are shell-quoted. Example:\n"
       "  chaosweep slurm experiments/fig6.toml --tasks 16 --concurrency 8 -o runs/fig6 --submit");
   struct Opts {
-    std::string spec, dir, partition, time, mem;
+    std::string spec, dir, partition, time, mem, account, job_name;
     int tasks = 0, concurrency = 0, cpus = 1;
     bool submit = false, force = false;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("spec", o->spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--tasks", o->tasks, "array tasks = shards")->required()->check(CLI::Range(1, 1000000));
+  cmd->add_option("--tasks", o->tasks, "array tasks = shards, at most the spec's runs")->required()->check(CLI::Range(1, 1000000));
   cmd->add_option("-o,--dir", o->dir, "directory for scripts, logs and results")->required();
   cmd->add_option("--concurrency", o->concurrency, "at most M tasks at once (--array=...%M)")->check(CLI::Range(0, 1000000));
   cmd->add_option("--cpus", o->cpus, "cpus per task (the sweep's --threads)")->check(CLI::Range(1, 4096));
-  cmd->add_option("--partition", o->partition, "sbatch --partition");
-  cmd->add_option("--time", o->time, "sbatch --time");
-  cmd->add_option("--mem", o->mem, "sbatch --mem");
+  cmd->add_option("--partition", o->partition, "sbatch --partition: NAME[,NAME...] of letters, digits, _ - .");
+  cmd->add_option("--account", o->account, "sbatch --account: a NAME of letters, digits, _ - .");
+  cmd->add_option("--time", o->time, "sbatch --time: MINUTES, [HOURS:]MINUTES:SECONDS or DAYS-HOURS[:MINUTES[:SECONDS]]");
+  cmd->add_option("--mem", o->mem, "sbatch --mem: a whole number with an optional unit K, M, G, T");
+  cmd->add_option("--job-name", o->job_name, "sbatch --job-name (default chaosweep-SPECNAME)");
   cmd->add_flag("--submit", o->submit, "submit with sbatch (array, then the dependent merge job)");
   cmd->add_flag("--force", o->force, "write over the scripts of an earlier `chaosweep slurm` in DIR");
   cmd->callback([o, &action] {
     action = [o]() -> int {
       SweepSpec spec;
+      fs::path dir;
+      std::string job_name = o->job_name, extra;
       try {
         spec = load_sweep_spec(o->spec);
-        if (!o->force && fs::exists(fs::path(o->dir) / "cluster.toml"))
+        // Checked before anything is written: a bad value leaves no script behind.
+        if (o->tasks > spec.size())
+          throw BadSlurmValue("--tasks: " + std::to_string(o->tasks) + " is more than the spec's " +
+                              std::to_string(spec.size()) + " runs (a task runs at least one): give --tasks in [1, " +
+                              std::to_string(spec.size()) + "]");
+        if (job_name.empty()) job_name = to_slurm_job_name("chaosweep-" + spec.name);
+        require("--job-name", check_slurm_job_name(job_name));
+        if (!o->partition.empty()) require("--partition", check_slurm_partition(o->partition));
+        if (!o->account.empty()) require("--account", check_slurm_account(o->account));
+        if (!o->time.empty()) require("--time", check_slurm_time(o->time));
+        if (!o->mem.empty()) require("--mem", check_slurm_mem(o->mem));
+        dir = fs::absolute(o->dir);
+        require("-o", check_slurm_directive_path(dir.string()));
+        if (!o->force && fs::exists(dir / "cluster.toml"))
           throw OutputExists("-o: " + o->dir + " already holds a chaosweep slurm sweep (cluster.toml); pass --force "
                              "to write over its scripts (its shard files stay)");
       } catch (const std::exception& e) {
@@ -125,48 +138,42 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
         return exit_bad_input;
       }
       try {
-        const fs::path dir = fs::absolute(o->dir);
         fs::create_directories(dir / "logs");
-        const std::string src = CHAOSWEEP_SOURCE_DIR "/cluster/";
-        std::string extra;
-        if (!o->partition.empty()) extra += "#SBATCH --partition=" + o->partition + "\n";
-        if (!o->time.empty()) extra += "#SBATCH --time=" + o->time + "\n";
-        if (!o->mem.empty()) extra += "#SBATCH --mem=" + o->mem + "\n";
-        std::string shards;
-        for (int k = 0; k < o->tasks; ++k) shards += " \"" + (dir / ("shard_" + std::to_string(k) + ".h5")).string() + "\"";
+        if (!o->partition.empty()) extra += "\n#SBATCH --partition=" + o->partition;
+        if (!o->account.empty()) extra += "\n#SBATCH --account=" + o->account;
+        if (!o->time.empty()) extra += "\n#SBATCH --time=" + o->time;
+        if (!o->mem.empty()) extra += "\n#SBATCH --mem=" + o->mem;
         const std::string array =
             "0-" + std::to_string(o->tasks - 1) + (o->concurrency > 0 ? "%" + std::to_string(o->concurrency) : "");
+        const std::string spec_path = fs::absolute(o->spec).string();
         for (const char* name : {"sweep", "merge"}) {
-          std::string text = read_text(src + name + ".sbatch.in");
-          replace_all(text, "@JOB_NAME@", "chaosweep-" + spec.name);
-          replace_all(text, "@ARRAY@", array);
-          replace_all(text, "@DIR@", dir.string());
-          replace_all(text, "@CPUS@", std::to_string(o->cpus));
-          replace_all(text, "@EXTRA@\n", extra);
-          replace_all(text, "@CHAOSWEEP@", self_path());
-          replace_all(text, "@SPEC@", fs::absolute(o->spec).string());
-          replace_all(text, "@TASKS@", std::to_string(o->tasks));
-          replace_all(text, "@SHARDS@", shards);
+          const auto tmpl = embedded_file(std::string("cluster/") + name + ".sbatch.in");
+          if (!tmpl) throw std::runtime_error(std::string("no built-in template cluster/") + name + ".sbatch.in");
+          // #SBATCH lines take checked values only; shell lines take quoted ones.
+          const std::string text = fill_template(*tmpl, {{"JOB_NAME", job_name},
+                                                         {"ARRAY", array},
+                                                         {"LOGS", (dir / "logs").string()},
+                                                         {"CPUS", std::to_string(o->cpus)},
+                                                         {"EXTRA", extra},
+                                                         {"DIR", shell_quote(dir.string())},
+                                                         {"CHAOSWEEP", shell_quote(self_path())},
+                                                         {"SPEC", shell_quote(spec_path)},
+                                                         {"TASKS", std::to_string(o->tasks)}});
           const fs::path out = dir / (std::string(name) + ".sbatch");
           write_checked(out, text);
           fs::permissions(out, fs::perms::owner_exec, fs::perm_options::add);
         }
-        write_checked(dir / "cluster.toml", "# written by chaosweep slurm; read by chaosweep status\n"
-                                            "spec = " + quote(fs::absolute(o->spec).string()) + "\n" +
-                                            "name = " + quote(spec.name) + "\n" +
-                                            "tasks = " + std::to_string(o->tasks) + "\nruns = " +
-                                            std::to_string(spec.size()) + "\n");
+        write_cluster_plan(dir, ClusterPlan{spec_path, spec.name, o->tasks, std::int64_t(spec.size())});
         std::cout << "wrote " << (dir / "sweep.sbatch").string() << " (" << spec.size() << " runs in " << o->tasks
                   << " shards, --array=" << array << ") and " << (dir / "merge.sbatch").string() << "\n";
         if (!o->submit) return exit_ok;
-        const auto [rc, id] = capture("sbatch --parsable " + quote((dir / "sweep.sbatch").string()));
-        const std::string job = id.substr(0, id.find_first_of(";\n"));
-        if (rc != 0 || job.empty()) throw std::runtime_error("sbatch failed for the array job");
+        const auto [rc, id] = capture("sbatch --parsable " + shell_quote((dir / "sweep.sbatch").string()));
+        if (rc != 0) throw std::runtime_error("sbatch failed for the array job");
+        const std::string job = job_id(id);
         const auto [rc2, id2] = capture("sbatch --parsable --dependency=afterok:" + job + " " +
-                                        quote((dir / "merge.sbatch").string()));
-        const std::string merge_job = id2.substr(0, id2.find_first_of(";\n"));
-        if (rc2 != 0 || merge_job.empty()) throw std::runtime_error("sbatch failed for the merge job");
-        std::cout << "submitted array job " << job << " and merge job " << merge_job << "\n";
+                                        shell_quote((dir / "merge.sbatch").string()));
+        if (rc2 != 0) throw std::runtime_error("sbatch failed for the merge job");
+        std::cout << "submitted array job " << job << " and merge job " << job_id(id2) << "\n";
         return exit_ok;
       } catch (const std::exception& e) {
         std::cerr << "chaosweep slurm: " << e.what() << "\n";
@@ -185,11 +192,11 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
   st->callback([dir, &action] {
     action = [dir]() -> int {
       try {
-        const ClusterPlan plan = read_plan(*dir);
+        const ClusterPlan plan = read_cluster_plan(*dir);
         std::vector<int> finished, partial, missing;
         std::string detail;
         for (int k = 0; k < plan.tasks; ++k) {
-          const fs::path file = fs::path(*dir) / ("shard_" + std::to_string(k) + ".h5");
+          const fs::path file = shard_file(*dir, k);
           const std::int64_t want = shard_size(plan.runs, k, plan.tasks);
           if (fs::exists(file) && count_rows(file.string()) == want) {
             finished.push_back(k);

@@ -11,6 +11,7 @@
 #include "clutter.hpp"
 #include "input_file.hpp"
 #include "run_hash.hpp"
+#include "embedded_files.hpp"
 
 namespace chaosweep {
 
@@ -228,18 +229,19 @@ Environment parse_environment(const std::string& text, const std::string& source
 }
 
 std::string find_environment_file(const std::string& name) {
-  std::vector<std::string> dirs;
   if (const char* p = std::getenv("CHAOSWEEP_ENV_PATH")) {
     std::stringstream ss(p);
-    for (std::string d; std::getline(ss, d, ':');)
-      if (!d.empty()) dirs.push_back(d);
-  }
-  dirs.push_back(CHAOSWEEP_SOURCE_DIR "/experiments/envs");
-  for (const std::string& d : dirs) {
-    const fs::path candidate = fs::path(d) / (name + ".toml");
-    if (fs::exists(candidate)) return candidate.string();
+    for (std::string d; std::getline(ss, d, ':');) {
+      if (d.empty()) continue;
+      const fs::path candidate = fs::path(d) / (name + ".toml");
+      if (fs::exists(candidate)) return candidate.string();
+    }
   }
   return {};
+}
+
+std::optional<std::string_view> builtin_environment(const std::string& name) {
+  return embedded_file("experiments/envs/" + name + ".toml");
 }
 
 Environment load_environment(const std::string& spec, double size_x, double size_y, InputRecord* source) {
@@ -262,6 +264,14 @@ Environment load_environment(const std::string& spec, double size_x, double size
   }
   const bool is_path = base.find('/') != std::string::npos || base.ends_with(".toml");
   const std::string path = is_path ? base : find_environment_file(base);
+  if (path.empty() && !is_path)
+    if (const auto text = builtin_environment(base)) {
+      // A built-in map is an input like a file: its text (this binary's copy)
+      // is part of the sweep's identity.
+      const std::string name = base + ".toml (built in)";
+      if (source) *source = {name, fnv1a64(std::string(*text))};
+      return parse_text(std::string(*text), name, size_x, size_y, seed);
+    }
   if (path.empty() || !fs::exists(path))
     throw std::runtime_error("environment '" + spec +
                              "' not found: give a path to a .toml file, \"empty\", or a name "

@@ -4,7 +4,9 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 
 #include "environment.hpp"
@@ -12,11 +14,11 @@
 
 namespace chaosweep {
 
-// Loads `spec` (a built-in name such as "empty", a name found as
-// experiments/envs/NAME.toml, or a path to a .toml file) for a map whose
-// side is size_x x size_y unless the file fixes its own size.
-// Throws std::runtime_error naming the file and the offending key. When a
-// file is read and `source` is given, it receives the file's path and hash.
+// Loads `spec` (a built-in name such as "empty", a name found as NAME.toml in
+// $CHAOSWEEP_ENV_PATH or among the built-in environments, or a path to a .toml
+// file) for a map whose side is size_x x size_y unless the file fixes its own
+// size. Throws std::runtime_error naming the file and the offending key. When
+// a file is read and `source` is given, it receives the file's path and hash.
 Environment load_environment(const std::string& spec, double size_x, double size_y,
                              InputRecord* source = nullptr);
 // The same from the file's text (`source_name` for messages); for tools and
@@ -24,9 +26,13 @@ Environment load_environment(const std::string& spec, double size_x, double size
 Environment parse_environment(const std::string& text, const std::string& source_name, double size_x,
                               double size_y);
 
-// Where environment names are looked up: $CHAOSWEEP_ENV_PATH (colon-separated)
-// then the source tree's experiments/envs.
+// Where an environment name is looked up first: NAME.toml in the directories of
+// $CHAOSWEEP_ENV_PATH (colon-separated, the first that has it); empty if none.
 std::string find_environment_file(const std::string& name);
+// Then among the built-in environments: experiments/envs/NAME.toml as it was
+// when the binary was built (embedded, so no source tree is needed); nullopt
+// for any other name.
+std::optional<std::string_view> builtin_environment(const std::string& name);
 
 // Loads each (spec, size) once; shared by all runs of a sweep.
 class EnvironmentCache {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Integration test against a real SLURM on localhost: starts munged,
 # slurmctld and slurmd with a minimal configuration in a temporary directory,
-# runs a sweep as a 4-task array with `chaosweep slurm --submit`, checks the
+# runs a sweep as a 4-task array with `chaosweep slurm --submit` (partition,
+# time, memory and job name given), checks the
 # merged file equals a single-machine run, deletes one task's output, checks
 # `chaosweep status` names it, resubmits just that task and checks the set is
 # complete again. Stops the daemons it started, by pid.
@@ -106,7 +107,9 @@ B = [0.2, 0.3]
 ds_index = [1, 2, 3]
 SPEC
 RUN=$BASE/work
-out=$("$BIN" slurm "$BASE/spec.toml" --tasks 4 -o "$RUN" --submit) || fail "chaosweep slurm --submit: $out"
+# Values in the forms chaosweep slurm checks, to show SLURM takes them as written.
+out=$("$BIN" slurm "$BASE/spec.toml" --tasks 4 -o "$RUN" --partition debug --time 0-0:10 --mem 100M \
+  --job-name cw-integration --submit) || fail "chaosweep slurm --submit: $out"
 echo "$out"
 read -r array_job merge_job < <(echo "$out" | sed -n 's/^submitted array job \([0-9]*\) and merge job \([0-9]*\)$/\1 \2/p')
 [[ -n ${array_job:-} && -n ${merge_job:-} ]] || fail "no job ids in: $out"

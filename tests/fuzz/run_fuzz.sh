@@ -3,6 +3,7 @@
 # under ASan+UBSan and runs it for a bounded time on a copy of its corpus
 # (tests/fuzz/corpus_<name>; new inputs stay in the temp copy).
 #   run_fuzz.sh NAME SECONDS SOURCE...      exit 0 clean, 1 a finding, 77 no clang
+# (a SOURCE is relative to the source tree, or absolute, e.g. a generated file)
 # FUZZ_SEED (default 1) and FUZZ_RUNS (default 200000) set the search; give
 # FUZZ_RUNS=-1 to run until SECONDS.
 set -euo pipefail
@@ -18,9 +19,9 @@ fi
 work=$(mktemp -d /tmp/chaosweep-fuzz.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 srcs=()
-for s in "$@"; do srcs+=("$root/$s"); done
+for s in "$@"; do [[ $s == /* ]] && srcs+=("$s") || srcs+=("$root/$s"); done
 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-  -DCHAOSWEEP_SOURCE_DIR="\"$root\"" -I"$root/kernels" -I"$root/engine" \
+  -I"$root/kernels" -I"$root/engine" \
   "$here/fuzz_$name.cpp" "${srcs[@]}" -o "$work/fuzz_$name"
 mkdir -p "$work/corpus"
 cp "$here/corpus_$name"/* "$work/corpus/" 2>/dev/null || true

@@ -1,0 +1,29 @@
+#pragma once
+// The directory `chaosweep slurm -o DIR` writes: its cluster.toml (which spec,
+// how many tasks) and the shard files DIR/shard_K.h5 the tasks write. Read by
+// `chaosweep status DIR` and `chaosweep merge --slurm-dir DIR`.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace chaosweep {
+
+struct ClusterPlan {
+  std::string spec, name;  // the spec's absolute path and its name
+  int tasks = 1;
+  std::int64_t runs = 0;
+};
+
+// Throws std::runtime_error naming DIR/cluster.toml when it is missing or bad.
+ClusterPlan read_cluster_plan(const std::filesystem::path& dir);
+void write_cluster_plan(const std::filesystem::path& dir, const ClusterPlan& plan);
+
+// DIR/shard_K.h5
+std::filesystem::path shard_file(const std::filesystem::path& dir, int k);
+
+// The shard files of DIR's plan that exist, in task order (merge reads them
+// from here rather than from a command line, which 1e5 paths would overflow).
+std::vector<std::string> existing_shard_files(const std::filesystem::path& dir);
+
+}  // namespace chaosweep
