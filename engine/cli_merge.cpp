@@ -1,30 +1,72 @@
 // `chaosweep merge -o OUT.h5 SHARDS...`
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
 #include <iostream>
 
 #include "cli_common.hpp"
 #include "cli_subcommands.hpp"
 #include "h5_merge.hpp"
+#include "output_lock.hpp"
+#include "rollback_driver.hpp"
 
 namespace chaosweep {
+
+namespace {
+
+// What a SIGINT/SIGTERM during a merge removes: the half-written merged file,
+// its journal and our lock file (paths set before the handler is installed;
+// unlink and _exit are async-signal-safe).
+const char* volatile cleanup_paths[3] = {nullptr, nullptr, nullptr};
+
+extern "C" void on_merge_signal(int sig) {
+  for (const char* volatile p : cleanup_paths)
+    if (p) unlink(p);
+  _exit(128 + sig);
+}
+
+}  // namespace
 
 void add_merge_command(CLI::App& app, std::function<int()>& action) {
   auto* cmd = app.add_subcommand("merge", "Merge the shard files of one sweep into one result file");
   cmd->footer(
-      "Checks that every input comes from the same spec (spec_hash) and shard count, reports\n"
-      "missing and duplicated run_ids and which shards to re-run, and only when none is missing\n"
-      "or duplicated writes OUT with the rows sorted by run_id. Exit 0 merged, 1 incomplete,\n"
+      "Checks that every input comes from the same spec (spec_hash) and shard count and is an\n"
+      "intact shard (shard K of N holds run_ids K, K+N, ... in order), reports missing run_ids\n"
+      "and which shards to re-run, and only when none is missing writes OUT with the rows sorted\n"
+      "by run_id (via OUT.merging, renamed at the end; SIGINT/SIGTERM remove it). Holds OUT.lock\n"
+      "like a sweep: refused while a sweep writes OUT, and refused without --force when an\n"
+      "interrupted sweep's OUT.partial exists (kept either way). Exit 0 merged, 1 incomplete,\n"
       "2 bad input. Example: chaosweep merge -o out/fig6.h5 out/fig6.shard*.h5");
   auto out = std::make_shared<std::string>();
   auto inputs = std::make_shared<std::vector<std::string>>();
   auto force = std::make_shared<bool>(false);
   cmd->add_option("-o,--output", *out, "merged result file")->required();
   cmd->add_option("shards", *inputs, "shard result files")->required()->check(CLI::ExistingFile);
-  add_force_flag(*cmd, *force);
+  cmd->add_flag("--force", *force,
+                "replace an existing OUT, and merge even though OUT.partial (an interrupted sweep) exists");
   cmd->callback([out, inputs, force, &action] {
     action = [out, inputs, force]() -> int {
+      static std::string temp, journal, lock_file;  // for the signal handler: alive to the end
       try {
+        OutputLock lock(*out);  // a sweep writing OUT (or another merge) refuses us
         check_output_free(*out, *force);
+        const std::string partial = *out + ".partial";
+        if (!*force && std::filesystem::exists(partial))
+          throw OutputExists("-o: " + partial + " exists (an interrupted sweep of " + *out +
+                             "): continue it with sweep --resume, or pass --force to merge anyway (" + partial +
+                             " is kept)");
+        temp = merge_temp_path(*out);
+        journal = journal_path(temp);
+        lock_file = lock.path();
+        cleanup_paths[0] = temp.c_str();
+        cleanup_paths[1] = journal.c_str();
+        cleanup_paths[2] = lock_file.c_str();
+        std::signal(SIGINT, on_merge_signal);
+        std::signal(SIGTERM, on_merge_signal);
         const MergeReport r = merge_results(*inputs, *out);
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
         std::cout << r.text() << "\n";
         if (!r.ok()) {
           std::cerr << "chaosweep merge: incomplete, nothing written\n";

@@ -24,9 +24,8 @@ struct Table {
   std::set<std::string> names;
 
   explicit Table(const std::string& path) {
+    check_result_columns(path);  // run_id and param_hash integers, among others
     for (const std::string& n : column_names(path)) names.insert(n);
-    for (const char* key : {"run_id", "param_hash", "status", "coverage_time", "variant", "env", "size_x", "size_y", "sr"})
-      if (!names.count(key)) throw std::runtime_error(path + " has no '" + key + "' column: not a chaosweep result file");
     run_id = read_i64_column(path, "run_id");
     param_hash = read_i64_column(path, "param_hash");
     for (const Column& c : result_columns()) {
@@ -47,6 +46,14 @@ std::string num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
+}
+
+void refuse_repeated_run_ids(std::vector<std::int64_t> ids, const std::string& path) {
+  std::sort(ids.begin(), ids.end());
+  const auto twice = std::adjacent_find(ids.begin(), ids.end());
+  if (twice != ids.end())
+    throw std::runtime_error(path + " holds run_id " + std::to_string(*twice) +
+                             " more than once: a result file holds each run once (the file is damaged or hand-made)");
 }
 
 double median(std::vector<double> v) {
@@ -94,20 +101,29 @@ CompareReport compare_results(const std::string& a_path, const std::string& b_pa
     if (!a.names.count(n)) rep.schema.push_back("column '" + n + "' only in B");
   const auto& ka = rep.by_run_id ? a.run_id : a.param_hash;
   const auto& kb = rep.by_run_id ? b.run_id : b.param_hash;
-  std::map<std::int64_t, std::size_t> index_b;
-  for (std::size_t j = 0; j < kb.size(); ++j) index_b.emplace(kb[j], j);
+  // A run_id names one run of a spec: a file holding one twice is damaged.
+  // Equal parameters may recur in a spec: the k-th such run of A meets the
+  // k-th of B, so every row is counted once either way round.
+  if (rep.by_run_id) {
+    refuse_repeated_run_ids(a.run_id, a_path);
+    refuse_repeated_run_ids(b.run_id, b_path);
+  }
+  std::map<std::int64_t, std::vector<std::size_t>> index_b;
+  for (std::size_t j = 0; j < kb.size(); ++j) index_b[kb[j]].push_back(j);
+  std::map<std::int64_t, std::size_t> taken;  // rows of B already aligned, per key
   std::vector<bool> used_b(kb.size(), false);
   auto note = [&](const std::string& s) {
     if (int(rep.details.size()) < opt.show) rep.details.push_back(s);
   };
   for (std::size_t i = 0; i < ka.size(); ++i) {
     const auto it = index_b.find(ka[i]);
-    if (it == index_b.end()) {
+    std::size_t& next = taken[ka[i]];
+    if (it == index_b.end() || next == it->second.size()) {
       ++rep.missing;
       note("run_id " + std::to_string(a.run_id[i]) + ": only in A");
       continue;
     }
-    const std::size_t j = it->second;
+    const std::size_t j = it->second[next++];
     used_b[j] = true;
     ++rep.aligned;
     bool same = true;
