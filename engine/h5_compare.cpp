@@ -25,14 +25,28 @@ struct Table {
 
   explicit Table(const std::string& path) {
     check_result_columns(path);  // run_id and param_hash integers, among others
+    TypedColumns file = read_typed_columns(path);  // one pass over the file
     for (const std::string& n : column_names(path)) names.insert(n);
-    run_id = read_i64_column(path, "run_id");
-    param_hash = read_i64_column(path, "param_hash");
+    run_id = file.i64.at("run_id");
+    param_hash = file.i64.at("param_hash");
+    // Each of this engine's deterministic columns, as this engine types it.
     for (const Column& c : result_columns()) {
       if (!c.deterministic || !names.count(c.name)) continue;
-      if (c.type == Column::Type::f64) f64[c.name] = read_f64_column(path, c.name);
-      else if (c.type == Column::Type::i64) i64[c.name] = read_i64_column(path, c.name);
-      else text[c.name] = read_text_column(path, c.name);
+      auto ints = file.i64.find(c.name);
+      auto reals = file.f64.find(c.name);
+      if (c.type == Column::Type::f64 && reals != file.f64.end()) {
+        f64[c.name] = std::move(reals->second);
+      } else if (c.type == Column::Type::f64 && ints != file.i64.end()) {
+        f64[c.name].assign(ints->second.begin(), ints->second.end());
+      } else if (c.type == Column::Type::i64 && ints != file.i64.end()) {
+        i64[c.name] = std::move(ints->second);
+      } else if (c.type == Column::Type::i64 && reals != file.f64.end()) {
+        for (double v : reals->second) i64[c.name].push_back(std::int64_t(v));
+      } else if (c.type == Column::Type::text && file.text.count(c.name)) {
+        text[c.name] = std::move(file.text[c.name]);
+      } else {
+        throw std::runtime_error(path + ": column '" + c.name + "' is of another kind than this engine's");
+      }
     }
   }
   std::string group_key(std::size_t i) const {
@@ -184,10 +198,10 @@ std::string CompareReport::text() const {
   for (const std::string& d : details) s += "  " + d + "\n";
   s += "coverage time of ok runs per group (Mann-Whitney U):\n";
   for (const Group& g : groups) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "  %-48s ok %lld / %lld, median %.6g / %.6g s, p = %.3g\n", g.key.c_str(),
-                  (long long)g.ok_a, (long long)g.ok_b, g.median_a, g.median_b, g.p_value);
-    s += buf;
+    char buf[160];  // the numbers; the key (of any length) goes in whole
+    std::snprintf(buf, sizeof buf, " ok %lld / %lld, median %.6g / %.6g s, p = %.3g\n", (long long)g.ok_a,
+                  (long long)g.ok_b, g.median_a, g.median_b, g.p_value);
+    s += "  " + g.key + std::string(g.key.size() < 48 ? 48 - g.key.size() : 0, ' ') + buf;
   }
   return s;
 }

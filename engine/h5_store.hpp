@@ -116,6 +116,15 @@ struct StoredColumns {
   std::vector<std::pair<std::string, std::vector<std::string>>> text;
 };
 StoredColumns read_all_columns(const std::string& path);
+// The same pass, each column in its file's kind: integers exact (param_hash
+// needs all 64 bits), floats, text.
+struct TypedColumns {
+  std::size_t rows = 0;
+  std::map<std::string, std::vector<std::int64_t>> i64;
+  std::map<std::string, std::vector<double>> f64;
+  std::map<std::string, std::vector<std::string>> text;
+};
+TypedColumns read_typed_columns(const std::string& path);
 std::int64_t count_rows(const std::string& path);
 std::vector<std::string> column_names(const std::string& path);
 // Names and storage types of /runs' columns, in file order (floats as f64,

@@ -140,8 +140,8 @@ std::vector<std::string> read_text_column(const std::string& path, const std::st
   Handle ft{member_type(runs, path, column), H5Tclose};
   if (H5Tget_class(ft.id) != H5T_STRING) input_fail(path + ": column '" + column + "' is not text");
   const bool variable = H5Tis_variable_str(ft.id) > 0;
-  const std::size_t size = variable ? sizeof(char*) : H5Tget_size(ft.id);
-  Handle mem{variable ? h5::variable_text_type() : h5::fixed_text_type(size), H5Tclose};
+  Handle mem{H5Tget_native_type(ft.id, H5T_DIR_ASCEND), H5Tclose};  // its own character set (HDF5 converts none)
+  const std::size_t size = H5Tget_size(mem.id);
   std::vector<unsigned char> raw = read_member(runs, path, column, mem.id, size);
   std::vector<std::string> out;
   out.reserve(std::size_t(runs.rows));
@@ -191,44 +191,74 @@ void check_result_columns(const std::string& path) {
   }
 }
 
-StoredColumns read_all_columns(const std::string& path) {
+namespace {
+
+// A member of /runs' native row type that the readers take: numbers of 4 or
+// 8 bytes, text of either kind.
+struct Member {
+  std::string name;
+  std::size_t offset, size;
+  H5T_class_t cls;
+  bool is_signed, variable;
+};
+
+double number_at(const Member& m, const unsigned char* p) {
+  if (m.cls == H5T_FLOAT && m.size == 8) {
+    double v;
+    std::memcpy(&v, p, 8);
+    return v;
+  }
+  if (m.cls == H5T_FLOAT) {
+    float f;
+    std::memcpy(&f, p, 4);
+    return f;
+  }
+  if (m.size == 8) {
+    std::int64_t i;
+    std::memcpy(&i, p, 8);
+    return m.is_signed ? double(i) : double(std::uint64_t(i));
+  }
+  std::int32_t i;
+  std::memcpy(&i, p, 4);
+  return m.is_signed ? double(i) : double(std::uint32_t(i));
+}
+
+std::int64_t integer_at(const Member& m, const unsigned char* p) {
+  if (m.size == 8) {
+    std::int64_t i;
+    std::memcpy(&i, p, 8);
+    return i;
+  }
+  std::int32_t i;
+  std::memcpy(&i, p, 4);
+  return m.is_signed ? std::int64_t(i) : std::int64_t(std::uint32_t(i));
+}
+
+// Reads /runs in blocks of whole rows (one pass over the compressed chunks,
+// however many columns; blocks bound the memory whatever the file's size):
+// first `begin(members, rows)`, then `take(member index, rows, n, row_size)`
+// for every member and block.
+template <class Begin, class Take>
+void read_blocks(const std::string& path, Begin&& begin, Take&& take) {
   const RunsDataset runs(path);
   Handle ftype{H5Dget_type(runs.dset.id), H5Tclose};
   Handle native{H5Tget_native_type(ftype.id, H5T_DIR_ASCEND), H5Tclose};
   const std::size_t row_size = H5Tget_size(native.id);
-  struct Member {
-    std::size_t offset, size;
-    H5T_class_t cls;
-    bool is_signed, variable;
-    std::size_t index;  // into numeric or text
-  };
-  StoredColumns out;
-  out.rows = std::size_t(runs.rows);
   std::vector<Member> members;
   bool any_variable = false;
   for (int i = 0; i < H5Tget_nmembers(native.id); ++i) {
     char* name = H5Tget_member_name(native.id, unsigned(i));
     Handle mt{H5Tget_member_type(native.id, unsigned(i)), H5Tclose};
     const H5T_class_t cls = H5Tget_class(mt.id);
-    Member m{H5Tget_member_offset(native.id, unsigned(i)), H5Tget_size(mt.id), cls,
-             cls == H5T_INTEGER && H5Tget_sign(mt.id) == H5T_SGN_2, cls == H5T_STRING && H5Tis_variable_str(mt.id) > 0,
-             0};
-    const bool ok = (m.cls == H5T_FLOAT && (m.size == 8 || m.size == 4)) ||
-                    (m.cls == H5T_INTEGER && (m.size == 8 || m.size == 4)) || m.cls == H5T_STRING;
-    if (ok) {
-      any_variable = any_variable || m.variable;
-      if (m.cls == H5T_STRING) {
-        m.index = out.text.size();
-        out.text.emplace_back(name, std::vector<std::string>{});
-      } else {
-        m.index = out.numeric.size();
-        out.numeric.emplace_back(name, std::vector<double>{});
-      }
-      members.push_back(m);
-    }
+    const Member m{name, H5Tget_member_offset(native.id, unsigned(i)), H5Tget_size(mt.id), cls,
+                   cls == H5T_INTEGER && H5Tget_sign(mt.id) == H5T_SGN_2,
+                   cls == H5T_STRING && H5Tis_variable_str(mt.id) > 0};
     H5free_memory(name);
+    if ((m.cls == H5T_FLOAT || m.cls == H5T_INTEGER) && (m.size == 8 || m.size == 4)) members.push_back(m);
+    if (m.cls == H5T_STRING) members.push_back(m);
+    any_variable = any_variable || m.variable;
   }
-  // Blocks of rows bound the memory whatever the file's size.
+  begin(static_cast<const std::vector<Member>&>(members), std::size_t(runs.rows));
   const hsize_t block = std::max<hsize_t>(1, (hsize_t(64) << 20) / std::max<std::size_t>(row_size, 1));
   std::vector<unsigned char> buf;
   Handle fspace{H5Dget_space(runs.dset.id), H5Sclose};
@@ -242,35 +272,61 @@ StoredColumns read_all_columns(const std::string& path) {
     H5E_END_TRY;
     if (rc < 0)
       input_fail("cannot read /runs of " + path + " (rows " + std::to_string(start) + "..): the file is damaged");
-    for (const Member& m : members) {
-      if (m.cls == H5T_STRING) {
-        append_text(out.text[m.index].second, buf.data(), std::size_t(n), row_size, m.offset, m.size, m.variable);
-        continue;
-      }
-      std::vector<double>& col = out.numeric[m.index].second;
-      for (hsize_t r = 0; r < n; ++r) {
-        const unsigned char* p = buf.data() + std::size_t(r) * row_size + m.offset;
-        double v;
-        if (m.cls == H5T_FLOAT && m.size == 8) {
-          std::memcpy(&v, p, 8);
-        } else if (m.cls == H5T_FLOAT) {
-          float f;
-          std::memcpy(&f, p, 4);
-          v = f;
-        } else if (m.size == 8) {
-          std::int64_t i;
-          std::memcpy(&i, p, 8);
-          v = m.is_signed ? double(i) : double(std::uint64_t(i));
-        } else {
-          std::int32_t i;
-          std::memcpy(&i, p, 4);
-          v = m.is_signed ? double(i) : double(std::uint32_t(i));
-        }
-        col.push_back(v);
-      }
-    }
+    for (std::size_t k = 0; k < members.size(); ++k) take(k, buf.data(), std::size_t(n), row_size);
     if (any_variable) H5Dvlen_reclaim(native.id, mspace.id, H5P_DEFAULT, buf.data());
   }
+}
+
+}  // namespace
+
+StoredColumns read_all_columns(const std::string& path) {
+  StoredColumns out;
+  std::vector<Member> members;
+  std::vector<std::size_t> index;  // into numeric or text
+  read_blocks(
+      path,
+      [&](const std::vector<Member>& m, std::size_t rows) {
+        members = m;
+        out.rows = rows;
+        for (const Member& x : members) {
+          index.push_back(x.cls == H5T_STRING ? out.text.size() : out.numeric.size());
+          if (x.cls == H5T_STRING) out.text.emplace_back(x.name, std::vector<std::string>{});
+          else out.numeric.emplace_back(x.name, std::vector<double>{});
+        }
+      },
+      [&](std::size_t k, const unsigned char* rows, std::size_t n, std::size_t row_size) {
+        const Member& m = members[k];
+        if (m.cls == H5T_STRING) {
+          append_text(out.text[index[k]].second, rows, n, row_size, m.offset, m.size, m.variable);
+          return;
+        }
+        std::vector<double>& col = out.numeric[index[k]].second;
+        for (std::size_t r = 0; r < n; ++r) col.push_back(number_at(m, rows + r * row_size + m.offset));
+      });
+  return out;
+}
+
+TypedColumns read_typed_columns(const std::string& path) {
+  TypedColumns out;
+  std::vector<Member> members;
+  read_blocks(
+      path,
+      [&](const std::vector<Member>& m, std::size_t rows) {
+        members = m;
+        out.rows = rows;
+      },
+      [&](std::size_t k, const unsigned char* rows, std::size_t n, std::size_t row_size) {
+        const Member& m = members[k];
+        if (m.cls == H5T_STRING) {
+          append_text(out.text[m.name], rows, n, row_size, m.offset, m.size, m.variable);
+        } else if (m.cls == H5T_INTEGER) {
+          auto& col = out.i64[m.name];
+          for (std::size_t r = 0; r < n; ++r) col.push_back(integer_at(m, rows + r * row_size + m.offset));
+        } else {
+          auto& col = out.f64[m.name];
+          for (std::size_t r = 0; r < n; ++r) col.push_back(number_at(m, rows + r * row_size + m.offset));
+        }
+      });
   return out;
 }
 
