@@ -50,7 +50,8 @@ ShardOf shard_of(const std::string& path) {
   try {
     std::size_t used = 0;
     s.runs_total = std::stoll(total, &used);
-    if (used != total.size() || s.runs_total < 0) throw std::invalid_argument(total);
+    if (used != total.size() || s.runs_total < 0 || s.runs_total > (std::int64_t(1) << 62))
+      throw std::invalid_argument(total);
   } catch (const std::exception&) {
     fail(path + ": attribute 'runs_total' is '" + total + "', not a run count");
   }

@@ -314,6 +314,11 @@ TypedColumns read_typed_columns(const std::string& path) {
       [&](const std::vector<Member>& m, std::size_t rows) {
         members = m;
         out.rows = rows;
+        for (const Member& x : members) {  // every column, of no rows too
+          if (x.cls == H5T_STRING) out.text[x.name];
+          else if (x.cls == H5T_INTEGER) out.i64[x.name];
+          else out.f64[x.name];
+        }
       },
       [&](std::size_t k, const unsigned char* rows, std::size_t n, std::size_t row_size) {
         const Member& m = members[k];

@@ -143,10 +143,6 @@ std::vector<RunRow> run_tuples(const std::vector<RunTuple>& tuples, const SweepO
   return all;
 }
 
-std::int64_t shard_size(std::int64_t total, int index, int count) {
-  return index < total ? (total - index + count - 1) / count : 0;
-}
-
 std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink,
                        EnvironmentCache* preloaded) {
   EnvironmentCache own;

@@ -31,7 +31,9 @@ struct SweepOptions {
 };
 
 // Runs of shard K of N (strided, so each shard samples the whole grid).
-std::int64_t shard_size(std::int64_t total, int index, int count);
+inline std::int64_t shard_size(std::int64_t total, int index, int count) {
+  return index < total ? (total - index + count - 1) / count : 0;
+}
 inline std::int64_t shard_run_id(std::int64_t j, int index, int count) { return index + j * std::int64_t(count); }
 
 using RowSink = std::function<void(const std::vector<RunRow>&)>;
