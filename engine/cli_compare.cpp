@@ -1,5 +1,4 @@
 // `chaosweep compare A.h5 B.h5`
-#include <cmath>
 #include <iostream>
 
 #include "cli_common.hpp"
@@ -20,20 +19,8 @@ void add_compare_command(CLI::App& app, std::function<int()>& action) {
   auto opt = std::make_shared<CompareOptions>();
   cmd->add_option("a", *a, "result file A")->required()->check(CLI::ExistingFile);
   cmd->add_option("b", *b, "result file B")->required()->check(CLI::ExistingFile);
-  // CLI::Range lets NaN through (every comparison with it is false).
-  const CLI::Validator a_number(
-      [](std::string& v) {
-        try {
-          std::size_t used = 0;
-          const double x = std::stod(v, &used);
-          if (used == v.size() && !std::isnan(x)) return std::string();
-        } catch (const std::exception&) {
-        }
-        return "'" + v + "' is not a number";
-      },
-      "NUMBER");
-  cmd->add_option("--rtol", opt->rtol, "relative tolerance for float columns")->check(a_number)->check(CLI::Range(0.0, 1e9));
-  cmd->add_option("--atol", opt->atol, "absolute tolerance for float columns")->check(a_number)->check(CLI::Range(0.0, 1e300));
+  cmd->add_option("--rtol", opt->rtol, "relative tolerance for float columns")->check(not_nan())->check(CLI::Range(0.0, 1e9));
+  cmd->add_option("--atol", opt->atol, "absolute tolerance for float columns")->check(not_nan())->check(CLI::Range(0.0, 1e300));
   cmd->add_option("--show", opt->show, "differences to list")->check(CLI::Range(0, 1000000));
   cmd->callback([a, b, opt, &action] {
     action = [a, b, opt]() -> int {

@@ -138,6 +138,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--flush-seconds", o->flush_seconds,
                   "also write the finished runs to OUT.partial once this many seconds passed since the last write "
                   "(0: only every --batch runs)")
+      ->check(not_nan())
       ->check(CLI::Range(0.0, 1e6))
       ->default_str("10");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors (and progress only with --progress=always)");

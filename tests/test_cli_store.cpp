@@ -173,6 +173,17 @@ TEST(CliSweep, KilledAfterFiveSecondsItKeepsItsFinishedRowsAndResumes) {
   EXPECT_TRUE(has(same.out, "960 identical")) << same.out;
 }
 
+TEST(CliSweep, ABadFlushPeriodIsNamedAndNothingIsWritten) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), cheap_spec(2, 2));
+  for (const char* bad : {"-1", "nan", "1e7", "soon"}) {
+    const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -o " + tmp.file("r.h5") + " --flush-seconds " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_TRUE(has(r.err, "--flush-seconds")) << r.err;
+    EXPECT_FALSE(fs::exists(tmp.file("r.h5.partial"))) << bad;
+  }
+}
+
 TEST(CliMerge, RefusesTheOutputOfARunningSweepAndLeavesItUndisturbed) {
   TempDir tmp;
   write_shard(tmp.file("s0.h5"), "h", 0, 2, 40);
