@@ -353,7 +353,7 @@ H5FD_t* drv_open(const char* name, unsigned flags, hid_t, haddr_t maxaddr) {
   };
   if (s->fd < 0) return fail(std::strerror(errno));
   if (!lock_file(s->fd, s->writable ? LOCK_EX : LOCK_SH))
-    return fail(errno == EWOULDBLOCK ? "another process is writing it (its lock is held)"
+    return fail(errno == EWOULDBLOCK ? "another process has it open (its lock is held)"
                                      : std::string("cannot lock it: ") + std::strerror(errno));
   try {
     if (create && (flags & H5F_ACC_TRUNC)) {
