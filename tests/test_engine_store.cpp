@@ -234,16 +234,30 @@ TEST(TextWidths, HoldTheEnvironmentAndLabelOfEveryRunOfEveryShippedSpec) {
   EXPECT_GT(w.at("label"), std::string("a part with a long name").size());
 }
 
-TEST(SweepRunner, FinishedRunsReachTheSinkOnTimeAsARunIdPrefixWhileTheBatchRuns) {
-  // One batch of runs of a few ms each: only the timed hand-over can split it.
-  const SweepSpec s = parse_sweep_spec(
-      "[fixed]\nsize = 20\nsr = 1\nmax_time = 4000\n[axes]\nA = { start = 0.3, stop = 0.7, num = 10 }\n"
-      "B = { start = 0.1, stop = 0.8, num = 8 }\n",
-      "timed.toml");
+namespace {
+
+// a_values x 8 runs of a few ms each.
+SweepSpec few_ms_runs(int a_values) {
+  return parse_sweep_spec("[fixed]\nsize = 20\nsr = 1\nmax_time = 4000\n[axes]\nA = { start = 0.3, stop = 0.7, num = " +
+                              std::to_string(a_values) + " }\nB = { start = 0.1, stop = 0.8, num = 8 }\n",
+                          "timed.toml");
+}
+
+// One batch for the whole sweep, handed over every 20 ms.
+SweepOptions one_batch_timed() {
   SweepOptions opt;
   opt.threads = 2;
   opt.batch_size = 1 << 20;
   opt.flush_seconds = 0.02;
+  return opt;
+}
+
+}  // namespace
+
+TEST(SweepRunner, FinishedRunsReachTheSinkOnTimeAsARunIdPrefixWhileTheBatchRuns) {
+  // One batch: only the timed hand-over can split it.
+  const SweepSpec s = few_ms_runs(10);
+  const SweepOptions opt = one_batch_timed();
   std::vector<std::size_t> pieces;
   std::vector<RunRow> got;
   const std::int64_t handed = run_sweep(s, opt, [&](const std::vector<RunRow>& rows) {
@@ -269,14 +283,8 @@ TEST(SweepRunner, FinishedRunsReachTheSinkOnTimeAsARunIdPrefixWhileTheBatchRuns)
 }
 
 TEST(SweepRunner, ASinkThatFailsStopsTheRunsAndItsErrorReachesTheCaller) {
-  const SweepSpec s = parse_sweep_spec(
-      "[fixed]\nsize = 20\nsr = 1\nmax_time = 4000\n[axes]\nA = { start = 0.3, stop = 0.7, num = 40 }\n"
-      "B = { start = 0.1, stop = 0.8, num = 8 }\n",
-      "failing.toml");
-  SweepOptions opt;
-  opt.threads = 2;
-  opt.batch_size = 1 << 20;
-  opt.flush_seconds = 0.02;
+  const SweepSpec s = few_ms_runs(40);
+  SweepOptions opt = one_batch_timed();
   ProgressCounters counters;
   opt.progress = &counters;
   EXPECT_THROW(run_sweep(s, opt, [](const std::vector<RunRow>&) { throw std::runtime_error("disk full"); }),
