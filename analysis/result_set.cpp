@@ -2,20 +2,71 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
+#include <tuple>
 
 #include "h5_store.hpp"
 #include "param_table.hpp"
 
 namespace chaosweep {
 
+namespace {
+
+// A run of a spec (spec_hash, run_id) in two files, or twice in one, would
+// be counted twice by every table and figure.
+void refuse_runs_held_twice(const std::vector<StoredColumns>& files, const std::vector<std::string>& spec_hashes,
+                            const std::vector<std::string>& paths) {
+  struct Held {
+    std::size_t spec;  // files of one spec_hash share it
+    double run_id;
+    std::size_t file;
+    bool operator<(const Held& o) const { return std::tie(spec, run_id, file) < std::tie(o.spec, o.run_id, o.file); }
+  };
+  std::vector<Held> held;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const std::size_t spec = std::size_t(std::find(spec_hashes.begin(), spec_hashes.end(), spec_hashes[f]) - spec_hashes.begin());
+    for (const auto& [name, v] : files[f].numeric)
+      if (name == "run_id")
+        for (double id : v) held.push_back({spec, id, f});
+  }
+  std::sort(held.begin(), held.end());
+  for (std::size_t k = 1; k < held.size(); ++k) {
+    const Held &a = held[k - 1], &b = held[k];
+    if (a.spec != b.spec || a.run_id != b.run_id) continue;
+    const std::string id = format_number(a.run_id);
+    if (a.file == b.file)
+      throw AnalysisError(paths[a.file] + " holds run_id " + id + " more than once (the file is damaged or hand-made)");
+    throw AnalysisError(paths[a.file] + " and " + paths[b.file] + " both hold run_id " + id +
+                        " of the same spec: its runs would be counted twice (give each shard once, or the "
+                        "merged file alone)");
+  }
+}
+
+}  // namespace
+
 ResultSet ResultSet::load(const std::vector<std::string>& paths) {
   if (paths.empty()) throw AnalysisError("no result file given");
   ResultSet rs;
   std::vector<StoredColumns> files;
-  for (const std::string& path : paths) {
+  std::vector<std::string> spec_hashes;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const std::string& path = paths[i];
+    for (std::size_t j = 0; j < i; ++j) {
+      std::error_code ec;
+      if (std::filesystem::equivalent(path, paths[j], ec))
+        throw AnalysisError(path + " is given twice (also as " + paths[j] + "): its runs would be counted twice");
+    }
     try {
       files.push_back(read_all_columns(path));
+      for (const auto& [name, type] : column_types(path))
+        if (name == "run_id" && type != Column::Type::i64)
+          throw AnalysisError(path + ": column 'run_id' is " +
+                              (type == Column::Type::f64 ? "floating-point" : "text") +
+                              ", not integers (not a chaosweep result file)");
+      spec_hashes.push_back(has_attribute(path, "spec_hash") ? read_attribute(path, "spec_hash") : "");
+    } catch (const AnalysisError&) {
+      throw;
     } catch (const std::exception& e) {
       // The store's messages name the file and what is wrong with it.
       const std::string what = e.what();
@@ -35,6 +86,7 @@ ResultSet ResultSet::load(const std::vector<std::string>& paths) {
       throw AnalysisError(path + ": /runs has no " + (has_numeric("run_id") ? "'status'" : "'run_id'") +
                           " column (not a chaosweep result file)");
   }
+  refuse_runs_held_twice(files, spec_hashes, paths);
   // Columns every file has (a merged or older file may carry fewer), with
   // the first file's kinds.
   auto in_all = [&](const std::string& name, bool numeric) {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <ctime>
 #include <sstream>
@@ -116,6 +117,21 @@ std::string utc_now() {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
+}
+
+const CLI::Validator& not_nan() {
+  static const CLI::Validator check(
+      [](std::string& v) {
+        try {
+          std::size_t used = 0;
+          const double x = std::stod(v, &used);
+          if (used == v.size() && !std::isnan(x)) return std::string();
+        } catch (const std::exception&) {
+        }
+        return "'" + v + "' is not a number";
+      },
+      "NUMBER");
+  return check;
 }
 
 void add_force_flag(CLI::App& cmd, bool& force) {

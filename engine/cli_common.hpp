@@ -34,6 +34,10 @@ struct OutputExists : OutputPathError {
   using OutputPathError::OutputPathError;
 };
 
+// A CLI11 check that a value is a number and not NaN (CLI::Range lets NaN
+// through: every comparison with it is false). Put it before the Range.
+const CLI::Validator& not_nan();
+
 // Adds --force to a command that writes files: results can be hours of work,
 // so no command replaces an existing file unless asked to.
 void add_force_flag(CLI::App& cmd, bool& force);

@@ -185,29 +185,52 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
   auto* st = app.add_subcommand("status", "Which shards of a `chaosweep slurm` directory are finished, partial or missing");
   st->footer(
       "Prints one line per shard state and the --array= list of the shards to resubmit\n"
-      "(partial or missing): sbatch --array=LIST DIR/sweep.sbatch. Exit 0 when every shard is\n"
-      "finished, 1 otherwise.");
+      "(partial, missing or damaged: a shard file that cannot be read, named with the reason;\n"
+      "remove it before resubmitting): sbatch --array=LIST DIR/sweep.sbatch. Exit 0 when every\n"
+      "shard is finished, 1 otherwise.");
   auto dir = std::make_shared<std::string>();
   st->add_option("dir", *dir, "directory written by chaosweep slurm")->required()->check(CLI::ExistingDirectory);
   st->callback([dir, &action] {
     action = [dir]() -> int {
       try {
         const ClusterPlan plan = read_cluster_plan(*dir);
-        std::vector<int> finished, partial, missing;
-        std::string detail;
+        std::vector<int> finished, partial, missing, damaged;
+        std::string detail, broken;
         for (int k = 0; k < plan.tasks; ++k) {
           const fs::path file = shard_file(*dir, k);
+          const std::string part = file.string() + ".partial";
           const std::int64_t want = shard_size(plan.runs, k, plan.tasks);
-          if (fs::exists(file) && count_rows(file.string()) == want) {
-            finished.push_back(k);
-          } else if (fs::exists(file.string() + ".partial")) {
-            partial.push_back(k);
-            std::int64_t have = 0;
+          std::error_code ec;
+          // A file that cannot be read is damaged: listed, and resubmitted once moved away.
+          std::string why;
+          auto rows_of = [&](const std::string& p) -> std::int64_t {
             try {
-              have = count_rows(file.string() + ".partial");
-            } catch (const std::exception&) {
+              return count_rows(p);
+            } catch (const std::exception& e) {
+              why = e.what();
+              return -1;
             }
-            detail += "  shard " + std::to_string(k) + ": " + std::to_string(have) + " of " + std::to_string(want) + " runs\n";
+          };
+          const std::string name = "  shard " + std::to_string(k) + ": ";
+          if (fs::exists(fs::symlink_status(file, ec))) {
+            const std::int64_t have = rows_of(file.string());
+            if (have == want) {
+              finished.push_back(k);
+              continue;
+            }
+            damaged.push_back(k);
+            broken += name + (have < 0 ? why : file.string() + " holds " + std::to_string(have) + " rows, not " +
+                                                   std::to_string(want)) +
+                      "; remove it, then resubmit\n";
+          } else if (fs::exists(fs::symlink_status(part, ec))) {
+            const std::int64_t have = rows_of(part);
+            if (have < 0) {
+              damaged.push_back(k);
+              broken += name + why + "; remove it, then resubmit\n";
+              continue;
+            }
+            partial.push_back(k);
+            detail += name + std::to_string(have) + " of " + std::to_string(want) + " runs\n";
           } else {
             missing.push_back(k);
           }
@@ -221,8 +244,10 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
                   << "finished " << finished.size() << ": " << list(finished) << "\n"
                   << "partial  " << partial.size() << ": " << list(partial) << "\n" << detail
                   << "missing  " << missing.size() << ": " << list(missing) << "\n";
+        if (!damaged.empty()) std::cout << "damaged  " << damaged.size() << ": " << list(damaged) << "\n" << broken;
         std::vector<int> redo = partial;
         redo.insert(redo.end(), missing.begin(), missing.end());
+        redo.insert(redo.end(), damaged.begin(), damaged.end());
         std::sort(redo.begin(), redo.end());
         if (redo.empty()) {
           std::cout << "all shards finished; merge: sbatch " << (fs::path(*dir) / "merge.sbatch").string() << "\n";

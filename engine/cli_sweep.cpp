@@ -20,6 +20,7 @@
 #include "input_identity.hpp"
 #include "output_lock.hpp"
 #include "progress.hpp"
+#include "result_columns.hpp"
 #include "simd_choice.hpp"
 #include "sweep_runner.hpp"
 #include "sweep_summary.hpp"
@@ -100,6 +101,39 @@ Shard parse_shard(const std::string& text) {
   return s;
 }
 
+// The root attributes of a sweep's file (docs/store.md): all of them for a
+// new file; for a resumed one (`resumed` names it) when and where it went on,
+// with every SIMD target the file's rows were computed with.
+std::vector<Attribute> provenance(const SweepSpec& spec, const SweepInputs& inputs, const std::string& spec_path,
+                                  int shard_index, int shard_count, int threads, const std::string& target,
+                                  const std::string& resumed) {
+  std::vector<Attribute> a;
+  std::string targets = target;
+  if (resumed.empty()) {
+    a = {{"engine_version", std::string(engine_version())},
+         {"git_commit", std::string(git_commit())},
+         {"git_dirty", git_dirty()},
+         {"spec", spec.text},
+         {"spec_hash", inputs.spec_hash},
+         {"inputs_hash", inputs.hash()},
+         {"input_files", inputs.text()},
+         {"spec_path", spec_path},
+         {"spec_name", spec.name},
+         {"runs_total", std::int64_t(spec.size())},
+         {"shard", std::to_string(shard_index) + "/" + std::to_string(shard_count)},
+         {"start_time", utc_now()}};
+  } else {
+    a = {{"resumed_at", utc_now()}};
+    if (has_attribute(resumed, "simd_target")) targets = join_name_lists(read_attribute(resumed, "simd_target"), target);
+  }
+  a.push_back({"host", host_name()});
+  a.push_back({"threads", std::int64_t(threads)});
+  a.push_back({"simd_target", targets});
+  for (const char* v : {"SLURM_JOB_ID", "SLURM_ARRAY_JOB_ID", "SLURM_ARRAY_TASK_ID"})
+    if (const char* val = std::getenv(v)) a.push_back({v, std::string(val)});
+  return a;
+}
+
 }  // namespace
 
 void add_sweep_command(CLI::App& app, std::function<int()>& action) {
@@ -107,8 +141,9 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
   cmd->footer(
       "The spec's axes are expanded as a Cartesian product (first axis slowest; a spec with\n"
       "[[part]]s runs each part's product in turn, run_ids following on); each run is\n"
-      "one row of /runs in OUT, in run_id order. Rows go to OUT.partial, a batch at a time\n"
-      "(the file is closed between batches, so a killed sweep leaves every finished batch);\n"
+      "one row of /runs in OUT, in run_id order. Rows go to OUT.partial every --batch runs or\n"
+      "--flush-seconds, whichever comes first; each write is all-or-nothing, so a sweep killed\n"
+      "even by kill -9 keeps every finished write (docs/store.md);\n"
       "OUT appears only when the sweep completes. SIGINT/SIGTERM finish the runs in flight,\n"
       "write them and exit 130/143: continue with --resume. A batch that might not fit on the\n"
       "disk (or under ulimit -f) is not begun: exit 3, continue with --resume once there is\n"
@@ -120,6 +155,7 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
     std::string spec, out, shard, progress = "auto";
     int threads = 0;
     std::int64_t batch = 4096;
+    double flush_seconds = 10;
     bool quiet = false, resume = false, force = false;
   };
   auto o = std::make_shared<Opts>();
@@ -136,6 +172,12 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_flag("--force", o->force,
                 "run even though OUT (replaced when this sweep completes) or OUT.partial (started over) exists");
   cmd->add_option("--batch", o->batch, "runs per write to OUT.partial")->check(CLI::Number)->check(CLI::Range(1, 1 << 24));
+  cmd->add_option("--flush-seconds", o->flush_seconds,
+                  "also write the finished runs to OUT.partial once this many seconds passed since the last write "
+                  "(0: only every --batch runs)")
+      ->check(not_nan())
+      ->check(CLI::Range(0.0, 1e6))
+      ->default_str("10");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors (and progress only with --progress=always)");
   cmd->add_option("--progress", o->progress,
                   "progress on stderr: a live line on a terminal, a plain line every 30 s otherwise")
@@ -208,38 +250,21 @@ void add_sweep_command(CLI::App& app, std::function<int()>& action) {
       std::int64_t written = skip;
       std::unique_ptr<H5RunWriter> created;
       try {
-        created = std::make_unique<H5RunWriter>(o->out, resuming ? H5RunWriter::Mode::resume : H5RunWriter::Mode::create);
+        created = std::make_unique<H5RunWriter>(o->out, resuming ? H5RunWriter::Mode::resume : H5RunWriter::Mode::create,
+                                                provenance(spec, inputs, o->spec, shard.index, shard.count, threads,
+                                                           to_string(target), resuming ? partial : ""),
+                                                text_widths(spec));
       } catch (const std::exception& e) {
         std::cerr << "chaosweep sweep: " << e.what() << "\n";
         return exit_bad_input;  // nothing has run: the output path cannot be written
       }
       H5RunWriter& writer = *created;
       try {
-        if (!resuming) {
-          writer.set_attribute("engine_version", engine_version());
-          writer.set_attribute("git_commit", git_commit());
-          writer.set_attribute("git_dirty", git_dirty() ? "true" : "false");
-          writer.set_attribute("spec", spec.text);
-          writer.set_attribute("spec_hash", inputs.spec_hash);
-          writer.set_attribute("inputs_hash", inputs.hash());
-          writer.set_attribute("input_files", inputs.text());
-          writer.set_attribute("spec_path", o->spec);
-          writer.set_attribute("spec_name", spec.name);
-          writer.set_attribute("runs_total", std::to_string(spec.size()));
-          writer.set_attribute("shard", std::to_string(shard.index) + "/" + std::to_string(shard.count));
-          writer.set_attribute("start_time", utc_now());
-        } else {
-          writer.set_attribute("resumed_at", utc_now());
-        }
-        writer.set_attribute("host", host_name());
-        writer.set_attribute("threads", std::to_string(threads));
-        writer.set_attribute("simd_target", to_string(target));
-        for (const char* v : {"SLURM_JOB_ID", "SLURM_ARRAY_JOB_ID", "SLURM_ARRAY_TASK_ID"})
-          if (const char* val = std::getenv(v)) writer.set_attribute(v, val);
         SweepOptions opt;
         opt.threads = threads;
         opt.target = target;
         opt.batch_size = o->batch;
+        opt.flush_seconds = o->flush_seconds;
         opt.shard_index = shard.index;
         opt.shard_count = shard.count;
         opt.skip = skip;

@@ -25,16 +25,29 @@ struct Table {
   std::set<std::string> names;
 
   explicit Table(const std::string& path) {
+    check_result_columns(path);  // run_id and param_hash integers, among others
+    TypedColumns file = read_typed_columns(path);  // one pass over the file
     for (const std::string& n : column_names(path)) names.insert(n);
-    for (const char* key : {"run_id", "param_hash", "status", "coverage_time", "variant", "env", "size_x", "size_y", "sr"})
-      if (!names.count(key)) throw std::runtime_error(path + " has no '" + key + "' column: not a chaosweep result file");
-    run_id = read_i64_column(path, "run_id");
-    param_hash = read_i64_column(path, "param_hash");
+    run_id = file.i64.at("run_id");
+    param_hash = file.i64.at("param_hash");
+    // Each of this engine's deterministic columns, as this engine types it.
     for (const Column& c : result_columns()) {
       if (!c.deterministic || !names.count(c.name)) continue;
-      if (c.type == Column::Type::f64) f64[c.name] = read_f64_column(path, c.name);
-      else if (c.type == Column::Type::i64) i64[c.name] = read_i64_column(path, c.name);
-      else text[c.name] = read_text_column(path, c.name);
+      auto ints = file.i64.find(c.name);
+      auto reals = file.f64.find(c.name);
+      if (c.type == Column::Type::f64 && reals != file.f64.end()) {
+        f64[c.name] = std::move(reals->second);
+      } else if (c.type == Column::Type::f64 && ints != file.i64.end()) {
+        f64[c.name].assign(ints->second.begin(), ints->second.end());
+      } else if (c.type == Column::Type::i64 && ints != file.i64.end()) {
+        i64[c.name] = std::move(ints->second);
+      } else if (c.type == Column::Type::i64 && reals != file.f64.end()) {
+        for (double v : reals->second) i64[c.name].push_back(std::int64_t(v));
+      } else if (c.type == Column::Type::text && file.text.count(c.name)) {
+        text[c.name] = std::move(file.text[c.name]);
+      } else {
+        throw std::runtime_error(path + ": column '" + c.name + "' is of another kind than this engine's");
+      }
     }
   }
   std::string group_key(std::size_t i) const {
@@ -44,6 +57,14 @@ struct Table {
 };
 
 std::string num(double v) { return format_number(v); }
+
+void refuse_repeated_run_ids(std::vector<std::int64_t> ids, const std::string& path) {
+  std::sort(ids.begin(), ids.end());
+  const auto twice = std::adjacent_find(ids.begin(), ids.end());
+  if (twice != ids.end())
+    throw std::runtime_error(path + " holds run_id " + std::to_string(*twice) +
+                             " more than once: a result file holds each run once (the file is damaged or hand-made)");
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;
@@ -90,20 +111,29 @@ CompareReport compare_results(const std::string& a_path, const std::string& b_pa
     if (!a.names.count(n)) rep.schema.push_back("column '" + n + "' only in B");
   const auto& ka = rep.by_run_id ? a.run_id : a.param_hash;
   const auto& kb = rep.by_run_id ? b.run_id : b.param_hash;
-  std::map<std::int64_t, std::size_t> index_b;
-  for (std::size_t j = 0; j < kb.size(); ++j) index_b.emplace(kb[j], j);
+  // A run_id names one run of a spec: a file holding one twice is damaged.
+  // Equal parameters may recur in a spec: the k-th such run of A meets the
+  // k-th of B, so every row is counted once either way round.
+  if (rep.by_run_id) {
+    refuse_repeated_run_ids(a.run_id, a_path);
+    refuse_repeated_run_ids(b.run_id, b_path);
+  }
+  std::map<std::int64_t, std::vector<std::size_t>> index_b;
+  for (std::size_t j = 0; j < kb.size(); ++j) index_b[kb[j]].push_back(j);
+  std::map<std::int64_t, std::size_t> taken;  // rows of B already aligned, per key
   std::vector<bool> used_b(kb.size(), false);
   auto note = [&](const std::string& s) {
     if (int(rep.details.size()) < opt.show) rep.details.push_back(s);
   };
   for (std::size_t i = 0; i < ka.size(); ++i) {
     const auto it = index_b.find(ka[i]);
-    if (it == index_b.end()) {
+    std::size_t& next = taken[ka[i]];
+    if (it == index_b.end() || next == it->second.size()) {
       ++rep.missing;
       note("run_id " + std::to_string(a.run_id[i]) + ": only in A");
       continue;
     }
-    const std::size_t j = it->second;
+    const std::size_t j = it->second[next++];
     used_b[j] = true;
     ++rep.aligned;
     bool same = true;
@@ -164,10 +194,10 @@ std::string CompareReport::text() const {
   for (const std::string& d : details) s += "  " + d + "\n";
   s += "coverage time of ok runs per group (Mann-Whitney U):\n";
   for (const Group& g : groups) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "  %-48s ok %lld / %lld, median %.6g / %.6g s, p = %.3g\n", g.key.c_str(),
-                  (long long)g.ok_a, (long long)g.ok_b, g.median_a, g.median_b, g.p_value);
-    s += buf;
+    char buf[160];  // the numbers; the key (of any length) goes in whole
+    std::snprintf(buf, sizeof buf, " ok %lld / %lld, median %.6g / %.6g s, p = %.3g\n", (long long)g.ok_a,
+                  (long long)g.ok_b, g.median_a, g.median_b, g.p_value);
+    s += "  " + g.key + std::string(g.key.size() < 48 ? 48 - g.key.size() : 0, ' ') + buf;
   }
   return s;
 }

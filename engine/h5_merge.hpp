@@ -1,7 +1,10 @@
 #pragma once
 // `chaosweep merge`: shard files of one sweep into one result file, rows
-// sorted by run_id, after checking that the shards belong together and that
-// no run is missing or duplicated.
+// sorted by run_id, after checking that the shards belong together, that
+// each is intact (shard K of N holds run_ids K, K+N, ... in order: a row
+// with any other run_id, one outside the spec's range included, names the
+// shard as damaged) and that no run is missing. Memory is bounded by the
+// shard count, not the run count: rows are read and written in blocks.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -10,17 +13,21 @@ namespace chaosweep {
 
 struct MergeReport {
   std::int64_t runs_total = 0, rows = 0;
-  std::vector<std::int64_t> missing;     // run_ids no shard holds
-  std::vector<std::int64_t> duplicated;  // run_ids more than one row holds
-  std::vector<int> shards_to_rerun;      // shard indices holding missing runs
+  std::int64_t missing = 0;                // runs no shard holds
+  std::vector<std::int64_t> first_missing; // the smallest of them (at most 10)
+  std::vector<int> shards_to_rerun;        // shard indices holding missing runs
   int shard_count = 1;
-  bool ok() const { return missing.empty() && duplicated.empty(); }
+  bool ok() const { return missing == 0; }
   std::string text() const;
 };
 
-// Checks `inputs`; when everything is there, writes `output` (via
-// output.partial, renamed at the end). Throws std::runtime_error when the
-// inputs are not shards of one sweep.
+// Where merge_results writes before renaming to `output` (never
+// output.partial, which belongs to a sweep of `output`).
+std::string merge_temp_path(const std::string& output);
+
+// Checks `inputs`; when every run is there, writes `output` (via
+// merge_temp_path, renamed at the end). Throws std::runtime_error when the
+// inputs are not intact shards of one sweep. The caller holds OUT's lock.
 MergeReport merge_results(const std::vector<std::string>& inputs, const std::string& output);
 
 }  // namespace chaosweep

@@ -18,7 +18,11 @@ namespace chaosweep {
 
 struct SweepOptions {
   int threads = 0;                    // 0: all cores
-  std::int64_t batch_size = 4096;     // rows handed to the sink at once (the flush unit)
+  std::int64_t batch_size = 4096;     // runs scheduled at once: at most this many rows per sink call
+  // Also hand the finished runs (a run_id prefix) to the sink while a batch
+  // runs, once this many seconds passed since the last hand-over (0: only
+  // at the end of each batch).
+  double flush_seconds = 10;
   SimdTarget target = best_simd_target();
   ProgressCounters* progress = nullptr;  // bumped as runs complete
   int shard_index = 0, shard_count = 1;  // this process runs run_ids i with i % count == index
@@ -27,7 +31,9 @@ struct SweepOptions {
 };
 
 // Runs of shard K of N (strided, so each shard samples the whole grid).
-std::int64_t shard_size(std::int64_t total, int index, int count);
+inline std::int64_t shard_size(std::int64_t total, int index, int count) {
+  return index < total ? (total - index + count - 1) / count : 0;
+}
 inline std::int64_t shard_run_id(std::int64_t j, int index, int count) { return index + j * std::int64_t(count); }
 
 using RowSink = std::function<void(const std::vector<RunRow>&)>;
@@ -37,8 +43,11 @@ using RowSink = std::function<void(const std::vector<RunRow>&)>;
 void preload_environments(const SweepSpec& spec, EnvironmentCache& cache);
 
 // Runs the shard's runs after the first opt.skip, calling sink with
-// consecutive batches in run_id order; returns how many runs it handed over
-// (fewer than the shard's when stopped). `preloaded`: a cache the caller has
+// consecutive pieces in run_id order (each batch in one piece, or in several
+// when opt.flush_seconds passes first; the sink may be called from a thread
+// of the runner, never from two at once); returns how many runs it handed
+// over (fewer than the shard's when stopped). An exception from the sink
+// stops the runs and is rethrown. `preloaded`: a cache the caller has
 // already filled with preload_environments (saves a pass over the spec).
 std::int64_t run_sweep(const SweepSpec& spec, const SweepOptions& opt, const RowSink& sink,
                        EnvironmentCache* preloaded = nullptr);

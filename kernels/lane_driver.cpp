@@ -121,6 +121,7 @@ class LaneDriver final : public LaneSink {
   }
 
   void count(const RunResult& r) {
+    if (q_.finished) q_.finished[std::size_t(&r - results_)].store(1, std::memory_order_release);
     if (q_.done) *q_.done += 1;
     if (q_.not_ok && r.status != Status::ok) *q_.not_ok += 1;
   }

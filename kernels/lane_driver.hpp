@@ -36,6 +36,9 @@ struct RunQueue {
   // When set, lanes take no new run; the runs in flight finish, so the runs
   // done are exactly items [0, min(next, n)).
   const std::atomic<bool>* stop = nullptr;
+  // When set, finished[i] becomes 1 (release) once results[i] is final, so
+  // another thread may take finished runs while the batch goes on.
+  std::atomic<std::uint8_t>* finished = nullptr;
 };
 void run_queue(RunQueue& queue, SimdTarget target);
 

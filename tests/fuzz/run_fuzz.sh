@@ -2,8 +2,10 @@
 # Builds a libFuzzer target with clang (Debian clang-14, libclang-rt-14-dev)
 # under ASan+UBSan and runs it for a bounded time on a copy of its corpus
 # (tests/fuzz/corpus_<name>; new inputs stay in the temp copy).
-#   run_fuzz.sh NAME SECONDS SOURCE...      exit 0 clean, 1 a finding, 77 no clang
-# (a SOURCE is relative to the source tree, or absolute, e.g. a generated file)
+#   run_fuzz.sh NAME SECONDS SOURCE|FLAG...  exit 0 clean, 1 a finding, 77 no clang
+# (a SOURCE is relative to the source tree, or an absolute path ending in .cpp,
+# e.g. a generated file; other arguments starting with - or / are compiler
+# flags and libraries, passed as they are)
 # FUZZ_SEED (default 1) and FUZZ_RUNS (default 200000) set the search; give
 # FUZZ_RUNS=-1 to run until SECONDS.
 set -euo pipefail
@@ -18,11 +20,15 @@ if [[ -z "$cxx" ]]; then
 fi
 work=$(mktemp -d /tmp/chaosweep-fuzz.XXXXXX)
 trap 'rm -rf "$work"' EXIT
-srcs=()
-for s in "$@"; do [[ $s == /* ]] && srcs+=("$s") || srcs+=("$root/$s"); done
+srcs=() flags=()
+for s in "$@"; do
+  if [[ $s == /*.cpp ]]; then srcs+=("$s")
+  elif [[ $s == -* || $s == /* ]]; then flags+=("$s")
+  else srcs+=("$root/$s"); fi
+done
 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -I"$root/kernels" -I"$root/engine" \
-  "$here/fuzz_$name.cpp" "${srcs[@]}" -o "$work/fuzz_$name"
+  "$here/fuzz_$name.cpp" "${srcs[@]}" ${flags[@]+"${flags[@]}"} -o "$work/fuzz_$name"
 mkdir -p "$work/corpus"
 cp "$here/corpus_$name"/* "$work/corpus/" 2>/dev/null || true
 cd "$work"
