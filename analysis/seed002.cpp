@@ -15,7 +15,7 @@ namespace chaosweep {
 
 namespace {
 
-// The paper's mixture for {30, 75, 315} degrees, eps 5, r 0.8 (SPEC 5).
+// The paper's mixture for {30, 75, 315} degrees, eps 5, r 0.8 (docs/spec.md §5).
 constexpr double paper_alpha[3] = {0.221, 0.280, 0.499};
 
 bool paper_setting(const Seed002Options& o) {

@@ -95,7 +95,7 @@ TextTable seed003_table(const ResultSet& rs) {
   }
   if (t.rows.empty())
     throw AnalysisError("no seed 003 rows: give the results of experiments/seed003.toml (labels table1, table3, loop, mirror)");
-  t.notes.push_back("Read literally (SPEC 4), the heading depends on the Arnold state only, so the start point merely "
+  t.notes.push_back("Read literally (docs/spec.md §4), the heading depends on the Arnold state only, so the start point merely "
                     "translates the trajectory and nothing after Map depends on it: Table 1's ten rows are equal, "
                     "where the paper's vary. The loop's candidates therefore come from a grid of Arnold initial "
                     "states (docs/seed003.md).");

@@ -1,5 +1,5 @@
 #pragma once
-// Environments are data (SPEC 1): a built-in name or a TOML file. See
+// Environments are data (docs/spec.md §1): a built-in name or a TOML file. See
 // experiments/envs/README.md for the file format.
 #include <map>
 #include <memory>

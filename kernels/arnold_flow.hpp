@@ -296,7 +296,7 @@ inline Rk4Step<T> rk4_stage4(Rk4Work<T, H>& w, T pos6) {
 }
 
 // h: step of the Arnold system; h_pos: robot distance per step (f * v * h),
-// which is how the scaling factor f enters (SPEC 2, "Scaling factor f").
+// which is how the scaling factor f enters (docs/spec.md §2, "Scaling factor f").
 // `small`: the lane runs in small-shift mode (see small_shift_mode).
 // t1: the trig of u, carried from the previous step (Rk4Step::t) or trig3(u)
 // at a run's start. In small-shift mode a step takes no full sincos at all:

@@ -1,5 +1,5 @@
 #pragma once
-// Seed 002 (SPEC 5): the bouncing robot's cell configuration space and its
+// Seed 002 (docs/spec.md §5): the bouncing robot's cell configuration space and its
 // generalized cell-to-cell mapping (GCM), one policy (bouncing angle) at a time.
 //
 // Model (paper Eq. 3, reconstructed): one GCM step moves the robot forward by

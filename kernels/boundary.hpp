@@ -1,5 +1,5 @@
 #pragma once
-// Keeping the robot inside the workspace (SPEC 2, "Boundary and obstacle handling").
+// Keeping the robot inside the workspace (docs/spec.md §2, "Boundary and obstacle handling").
 #include "lane_math.hpp"
 
 namespace chaosweep {

@@ -1,10 +1,10 @@
 #pragma once
 // Analysis of the Chebyshev map itself (seed 001, Sections 2.1-2.3): Lyapunov
 // exponents, the variable difference v(xy) of Eq. 6, orbit histograms and
-// their chi-square statistics. Numbers for SPEC 3's "say which is right".
+// their chi-square statistics. Numbers for docs/spec.md §3's "say which is right".
 //
 // Orbits: x_0 = x0, x_{i+1} = chebyshev_step(x_i, k), iterated on x; a
-// transform is applied to each sample only (SPEC 3), never fed back.
+// transform is applied to each sample only (docs/spec.md §3), never fed back.
 //
 // Floating point: a double orbit of cos(k acos x) can land exactly on +-1
 // (cos rounds to 1 whenever k acos x is within ~1e-8 of a multiple of pi,

@@ -1,7 +1,7 @@
 #pragma once
 // The Chebyshev map of order k, x' = cos(k arccos x) on [-1, 1] (seed 001,
 // Eq. 1), and the transforms that flatten its arcsine-distributed orbit
-// (Eqs. 4-5). SPEC 3: the map iterates on x and the planner uses the
+// (Eqs. 4-5). docs/spec.md §3: the map iterates on x and the planner uses the
 // transformed value u; the transform never feeds back into the map.
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// Seed 003 (SPEC 4): the Arnold-driven robot integrated by second-order
+// Seed 003 (docs/spec.md §4): the Arnold-driven robot integrated by second-order
 // Runge-Kutta, its trajectory compressed onto a workplace (Map), the coverage
 // rate of Eqs. 10-12, the candidate sets of Algorithm 1, the contraction
 // transformation of Eqs. 13-20 that links one trajectory to the end of the
@@ -37,7 +37,7 @@ enum class Heading { x = 1, y = 2, z = 3 };
 enum class Rk2 { heun, midpoint };
 
 // How a path marks cells: every cell the segment between consecutive points
-// touches (supercover, as SPEC 1; default: closer to every number of the
+// touches (supercover, as docs/spec.md §1; default: closer to every number of the
 // paper we compared, and exact on Fig. 16a-b), or only the cells holding a
 // point.
 enum class Sampling { segments, points };

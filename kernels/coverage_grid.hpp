@@ -1,5 +1,5 @@
 #pragma once
-// The coverage grid of SPEC 1: square cells of side SR, ceil(L/SR) per axis
+// The coverage grid of docs/spec.md §1: square cells of side SR, ceil(L/SR) per axis
 // (the last row/column clipped to the map), a cell free when its centre is not
 // inside an obstacle. Tracks visited free cells incrementally.
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 // The workspace a run happens in: a rectangle [0,lx] x [0,ly] with static
-// axis-aligned rectangular obstacles (SPEC 1). Pure data; loading from files
+// axis-aligned rectangular obstacles (docs/spec.md §1). Pure data; loading from files
 // is the engine's job.
 #include <memory>
 #include <optional>

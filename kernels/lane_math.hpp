@@ -4,7 +4,7 @@
 // Every numeric kernel is a template over a lane type T. This header gives the
 // scalar (width 1) overloads; SIMD widths add overloads with the same names and
 // the *same* operation sequence, which is what makes results bit-identical
-// across widths (see BENCHMARKS.md / SPEC decisions). Keep each helper a single,
+// across widths (see BENCHMARKS.md / docs/spec.md decisions). Keep each helper a single,
 // fixed sequence of IEEE operations: no library calls whose rounding may differ.
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Reference times and coverage thresholds of SPEC 1.
+// Reference times and coverage thresholds of docs/spec.md §1.
 #include <cmath>
 
 namespace chaosweep {

@@ -21,7 +21,7 @@ bool finite(const Vec3<double>& u) {
 
 int auto_th(const RunParams& p, const Environment& env) {
   if (p.th > 0) return p.th;
-  // Paper: th = 10 on 50 m maps, higher on larger maps (SPEC: 10 * L / 50).
+  // Paper: th = 10 on 50 m maps, higher on larger maps (docs/spec.md §2: 10 * L / 50).
   return std::max(1, int(std::lround(10.0 * std::max(env.lx, env.ly) / 50.0)));
 }
 

@@ -120,7 +120,7 @@ inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
   return ended_;
 }
 
-// The perturbed Arnold initial state of a run (SPEC 1, "Chaotic spread").
+// The perturbed Arnold initial state of a run (docs/spec.md §1, "Chaotic spread").
 Vec3<double> initial_state(const RunParams& p);
 
 }  // namespace chaosweep

@@ -1,6 +1,6 @@
 #pragma once
 // What a run is (its parameters) and what it yields (its result). A run is a
-// pure function RunParams x Environment -> RunResult (SPEC 6).
+// pure function RunParams x Environment -> RunResult (docs/spec.md §6).
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -23,7 +23,7 @@ inline constexpr double unset = std::numeric_limits<double>::quiet_NaN();
 
 struct RunParams {
   Planner planner = Planner::arnold;
-  // Arnold flow coefficients and initial state (SPEC 2 defaults).
+  // Arnold flow coefficients and initial state (docs/spec.md §2 defaults).
   double A = 0.5, B = 0.25, C = 0.25;
   double ic_x = 0.0, ic_y = 1.0, ic_z = 0.0;
   int ds_index = 3;      // heading = x (1), y (2) or z (3)
@@ -86,7 +86,7 @@ struct RunParams {
   double bounce_eps = 5, bounce_r = 0.8;
   double bounce_heading = 0;  // initial heading, degrees
 
-  // Chaotic spread (SPEC 1): ic perturbed uniformly in +-ic_jitter per
+  // Chaotic spread (docs/spec.md §1): ic perturbed uniformly in +-ic_jitter per
   // coordinate, drawn from `seed`.
   double ic_jitter = 0.0;
   std::int64_t seed = 0;

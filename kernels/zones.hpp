@@ -37,7 +37,7 @@ class Zones {
   std::vector<ZoneInfo> base_;  // midpoints and goals; counts filled by snapshot()
 };
 
-// Candidate zones in the order MapZoning tries them (SPEC 2): zones with a free
+// Candidate zones in the order MapZoning tries them (docs/spec.md §2): zones with a free
 // cell and a goal, except the robot's. Without obstacles: lowest density
 // first, ties by distance to the goal; with obstacles: nearest goal first,
 // ties by lowest density. Remaining ties by zone index.

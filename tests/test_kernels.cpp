@@ -1,4 +1,4 @@
-// Kernels: the numerics of SPEC sections 1 and 2 (original Arnold planner).
+// Kernels: the numerics of docs/spec.md §1 and §2 (original Arnold planner).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -547,7 +547,7 @@ TEST(Planner, StepSizeCollapseEndsTheRunAsDiverged) {
 }
 
 TEST(Planner, StepDoublingEqualsFixedStepForThePapersParameters) {
-  // SPEC 2: for the paper's parameters doubling never halves dt, so both
+  // docs/spec.md §2: for the paper's parameters doubling never halves dt, so both
   // integrators give the same run, bit for bit.
   for (int ds = 1; ds <= 3; ++ds) {
     RunParams p = small_run(50.0);

@@ -1,4 +1,4 @@
-// Kernels: seed 002 (SPEC 5), the bouncing robot: cell configuration space and
+// Kernels: seed 002 (docs/spec.md §5), the bouncing robot: cell configuration space and
 // GCM step, Tarjan SCCs and persistent groups, the Markov chain's limiting
 // distribution, the policy mixture (Eq. 5) and the roadmap plans (Algs. 1-2).
 //

@@ -1,4 +1,4 @@
-// Kernels: the Chebyshev map's own analysis (SPEC 3, seed 001 Sections
+// Kernels: the Chebyshev map's own analysis (docs/spec.md §3, seed 001 Sections
 // 2.1-2.3): Lyapunov exponents, orbit histograms, v(xy).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Kernels: seed 003 (SPEC 4), the Arnold robot under RK2, Map, the coverage
+// Kernels: seed 003 (docs/spec.md §4), the Arnold robot under RK2, Map, the coverage
 // rate, Algorithm 1, the contraction transformation (Eqs. 13-20), the
 // complete-coverage loop of Section 6 and the mirror mapping of Figs. 15-16.
 #include <gtest/gtest.h>

@@ -321,7 +321,7 @@ TEST(ChaoticSpread, IcJitterGivesDifferentRunsForDifferentSeeds) {
   p.seed = 2;
   const RunResult b = run_planner(p, square_map(20.0));
   EXPECT_EQ(a.coverage_time, a2.coverage_time);  // same seed, same run
-  EXPECT_NE(a.coverage_time, b.coverage_time);   // 1e-6 grows to metres (SPEC 1)
+  EXPECT_NE(a.coverage_time, b.coverage_time);   // 1e-6 grows to metres (docs/spec.md §1)
   const Vec3<double> u0 = initial_state(p);
   EXPECT_NEAR(u0.y, 1.0, 1e-6);
   EXPECT_NE(u0.y, 1.0);
