@@ -23,8 +23,12 @@ double Environment::obstacle_area() const {
 }
 
 bool push_out_of_obstacles(const Environment& env, double fo, double& x, double& y) {
-  bool moved = false;
-  // A push can land in a neighbour's margin; a few rounds settle any layout
+  return keep_out_of_obstacles(env, fo, false, x, y).moved;
+}
+
+ObstacleHit keep_out_of_obstacles(const Environment& env, double fo, bool mirror, double& x, double& y) {
+  ObstacleHit hit;
+  // A move can land in a neighbour's margin; a few rounds settle any layout
   // whose obstacles are not packed tighter than 2*fo.
   for (int round = 0; round < 8; ++round) {
     bool again = false;
@@ -34,15 +38,16 @@ bool push_out_of_obstacles(const Environment& env, double fo, double& x, double&
       const double to_left = x - grown.x0, to_right = grown.x1 - x;
       const double to_bottom = y - grown.y0, to_top = grown.y1 - y;
       const double m = std::min({to_left, to_right, to_bottom, to_top});
-      if (m == to_left) x = grown.x0;
-      else if (m == to_right) x = grown.x1;
-      else if (m == to_bottom) y = grown.y0;
-      else y = grown.y1;
-      moved = again = true;
+      auto place = [mirror](double& u, double face) { u = mirror ? (face + face) - u : face; };
+      if (m == to_left) place(x, grown.x0), ++hit.x_faces;
+      else if (m == to_right) place(x, grown.x1), ++hit.x_faces;
+      else if (m == to_bottom) place(y, grown.y0), ++hit.y_faces;
+      else place(y, grown.y1), ++hit.y_faces;
+      hit.moved = again = true;
     }
     if (!again) break;
   }
-  return moved;
+  return hit;
 }
 
 std::vector<unsigned char> cells_clear_of_obstacles(const Environment& env, double fo, int nx, int ny, double cell) {

@@ -48,7 +48,8 @@ bool PlannerRun::transit_to(Point goal) {
       double x = mirror_eq7(path[i].x, 0.0, env_.lx, p_.fo);
       double y = mirror_eq7(path[i].y, 0.0, env_.ly, p_.fo);
       const bool blocked = env_.obstacle_at(x, y) >= 0;
-      if (blocked) push_out_of_obstacles(env_, p_.fo, x, y);  // Eq. 8
+      // Eq. 8 as the Arnold steps read it (a transit point has no motion to reverse).
+      if (blocked) keep_out_of_obstacles(env_, p_.fo, p_.obstacle_response != ObstacleResponse::push, x, y);
       robot_.jump_to(x, y);
       ++r_.transit_points;
       if (after_move(p_.dt_c, SegmentKind::transit)) return false;

@@ -94,6 +94,10 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(start_y, -1e9, 1e9, true, "start Y, m (unset: the environment's start)"),
       CW_CHOICE(boundary, Boundary, "wall handling: Eq. 7 mirror or unfolded-plane fold",
                 "mirror", "fold"),
+      CW_CHOICE(obstacle_response, ObstacleResponse,
+                "obstacle faces (Eq. 8): push the point onto the face + fo, mirror it about that line, or "
+                "mirror it and reverse the motion along that axis (a bounce)",
+                "push", "mirror", "reflect"),
       CW_CHOICE(integrator, Integrator, "fixed-step RK4 or RK4 with step doubling", "rk4",
                 "rk4-doubling"),
       CW_CHOICE(sampling, Sampling,

@@ -140,7 +140,10 @@ void PlannerRun::write_lane(LaneArrays& a, int l) {
   a.steps[l] = double(r_.steps);
   a.seg_step[l] = seg_step_;
   a.niter[l] = p_.niter;
-  a.fast[l] = trace_ != nullptr ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
+  // A bouncing robot's displacement takes signs the vector code does not
+  // apply: its steps all go to the scalar path (correct first; fast later).
+  const bool bounces = p_.obstacle_response == ObstacleResponse::reflect && !env_.obstacles.empty();
+  a.fast[l] = trace_ != nullptr || bounces ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
   // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
   // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
   const bool fold = p_.boundary == Boundary::fold;

@@ -12,6 +12,11 @@ enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
 enum class ZoneGoal { free_cell, midpoint };
+// Eq. 8's reading at obstacle faces: push the point onto the face (as
+// printed), mirror it about the face (Eq. 7's form), or mirror it and reverse
+// the robot's motion along that axis from then on (a specular bounce, the
+// fold's reading at obstacles).
+enum class ObstacleResponse { push, mirror, reflect };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
 // Seed 003: one mapped trajectory, the complete-coverage loop of contracted
 // sections, or the mirror-mapping baseline.
@@ -37,6 +42,7 @@ struct RunParams {
   double sr = 1.0;       // sensing range = cell side, m
   double start_x = unset, start_y = unset;  // unset: the environment's start, else (fo, fo)
   Boundary boundary = Boundary::mirror;
+  ObstacleResponse obstacle_response = ObstacleResponse::push;
   Integrator integrator = Integrator::rk4;
   Sampling sampling = Sampling::segments;
   double dc = 0.9;          // desired coverage

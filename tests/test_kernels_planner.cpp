@@ -286,19 +286,21 @@ TEST(LogisticPlanner, AFixedPointEndsTheRunAsDiverged) {
 }
 
 // A run never ends a step inside an obstacle or outside the map, for every
-// technique set, on the Table 1 layouts (scaled to 50 m).
+// technique set and obstacle response, on the Table 1 layouts (scaled to 50 m).
 TEST(Planner, RobotNeverEndsAStepInsideAnObstacleOrOutsideTheMap) {
   const std::vector<Rect> five = {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44},
                                   {23.5, 23.5, 26.5, 26.5}};
   const std::vector<Rect> one = {{15, 15, 35, 35}};
   for (const auto& obstacles : {five, one})
-    for (int variant = 0; variant < 5; ++variant) {
+    for (int variant = 0; variant < 7; ++variant) {
       RunParams p = small_run(50.0);
+      if (variant == 5) p.obstacle_response = ObstacleResponse::mirror;
+      if (variant == 6) p.obstacle_response = ObstacleResponse::reflect, p.map_zoning = 1;
       p.start_x = 15;
       p.start_y = 3;
       p.max_time = 4000;
       p.index_switching = variant == 1 || variant == 3;
-      p.map_zoning = variant >= 2;
+      p.map_zoning = p.map_zoning || (variant >= 2 && variant <= 4);
       p.c = 0.8;
       p.f = variant == 4 ? 3.0 : 1.0;
       const Environment env = square_map(50.0, obstacles);
