@@ -50,9 +50,13 @@ bool PlannerRun::transit_to(Point goal) {
       const bool blocked = env_.obstacle_at(x, y) >= 0;
       // Eq. 8 as the Arnold steps read it (a transit point has no motion to reverse).
       if (blocked) keep_out_of_obstacles(env_, p_.fo, p_.obstacle_response != ObstacleResponse::push, x, y);
+      const Point from = position();
       robot_.jump_to(x, y);
       ++r_.transit_points;
-      if (after_move(p_.dt_c, SegmentKind::transit)) return false;
+      // The mapped points are not v dt_c apart (Eq. 6 adds the correction Q):
+      // dt_c each is Algorithm 4's clock, distance / v the robot's speed.
+      const double dt = p_.transit_time == TransitTime::points ? p_.dt_c : std::hypot(x - from.x, y - from.y) / p_.v;
+      if (after_move(dt, SegmentKind::transit)) return false;
       if (blocked) {
         ++r_.transit_attempts;
         if (++attempts >= th_) return false;

@@ -48,6 +48,10 @@ std::vector<ParamInfo> make_table() {
       CW_INT(th, 0, 1e9, "transit attempts per zone (0: 10 * L / 50)"),
       CW_INT(dnh, 0, 1e9, "th grows by dnh when every zone failed"),
       CW_REAL(dt_c, 1e-6, 10, false, "transit / Logistic step, s"),
+      CW_CHOICE(transit_time, TransitTime,
+                "robot time of a transit point: dt_c each (Algorithm 4), or its distance from the previous "
+                "point at speed v",
+                "points", "distance"),
       CW_REAL(logistic_r, 0, 4, false, "Logistic map parameter r"),
       CW_REAL(logistic_x0, 0, 1, false, "Logistic map initial state"),
       CW_INT(cheb_k, 2, 1000, "Chebyshev map order k"),

@@ -17,6 +17,9 @@ enum class ZoneGoal { free_cell, midpoint };
 // the robot's motion along that axis from then on (a specular bounce, the
 // fold's reading at obstacles).
 enum class ObstacleResponse { push, mirror, reflect };
+// Robot time a transit point costs: dt_c each (Algorithm 4 as printed), or
+// its distance from the previous point at speed v.
+enum class TransitTime { points, distance };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
 // Seed 003: one mapped trajectory, the complete-coverage loop of contracted
 // sections, or the mirror-mapping baseline.
@@ -61,6 +64,7 @@ struct RunParams {
   int th = 0;               // transit attempts per zone; 0 = auto (10 * L / 50)
   int dnh = 5;              // th grows by dnh when every zone failed
   double dt_c = 0.1;        // transit / Logistic step, s
+  TransitTime transit_time = TransitTime::points;
   double logistic_r = 4.0, logistic_x0 = 0.1;
 
   // Chebyshev planner (seed 001): two maps of order cheb_k from cheb_x0 and

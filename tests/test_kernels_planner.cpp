@@ -156,6 +156,21 @@ TEST(Transit, ReachesAReachableGoal) {
   EXPECT_NEAR(run.time(), r.transit_points * p.dt_c, 1e-9);  // each mapped point costs dt_c
 }
 
+TEST(Transit, ByDistanceTakesThePathLengthAtSpeedV) {
+  RunParams p = mechanism_run(20.0);
+  p.transit_time = TransitTime::distance;
+  p.v = 2.0;
+  Harness h(p, square_map(20.0));
+  ASSERT_TRUE(h.run->transit_to({15.0, 12.0}));
+  double length = 0;
+  for (std::size_t i = 1; i < h.trace.points.size(); ++i)
+    length += std::hypot(h.trace.points[i].x - h.trace.points[i - 1].x, h.trace.points[i].y - h.trace.points[i - 1].y);
+  EXPECT_NEAR(h.run->time(), length / p.v, 1e-9);
+  // Eq. 6's correction stretches the Logistic steps of v dt_c: by points the
+  // transit would run faster than v.
+  EXPECT_GT(h.run->time(), h.r.transit_points * p.dt_c);
+}
+
 TEST(Transit, IsRebuiltAtObstaclesAndGivesUpAfterThAttempts) {
   RunParams p = mechanism_run(20.0);
   p.th = 4;
