@@ -12,7 +12,7 @@ void PlannerRun::map_zoning() {
   for (;;) {
     // Re-ranked from wherever the robot now is: failed transits move it.
     const auto order = zone_order(zones_.snapshot(grid_), zones_.zone_of(robot_.x(), robot_.y()),
-                                  robot_.x(), robot_.y(), !env_.obstacles.empty());
+                                  robot_.x(), robot_.y(), zones_distance_first(p_.zone_order, !env_.obstacles.empty()));
     const ZoneInfo* next = nullptr;
     for (const ZoneInfo& z : order)
       if (!dropped[std::size_t(z.index)]) {

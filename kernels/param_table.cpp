@@ -45,6 +45,10 @@ std::vector<ParamInfo> make_table() {
                 "transit goal: the zone midpoint, or (free) the nearest free cell when the midpoint "
                 "is within fo of an obstacle",
                 "free", "midpoint"),
+      CW_CHOICE(zone_order, ZoneOrder,
+                "MapZoning's zone ranking: auto (lowest density first on open maps, nearest first with "
+                "obstacles), or always density or distance first (ties by the other)",
+                "auto", "density", "distance"),
       CW_INT(th, 0, 1e9, "transit attempts per zone (0: 10 * L / 50)"),
       CW_INT(dnh, 0, 1e9, "th grows by dnh when every zone failed"),
       CW_REAL(dt_c, 1e-6, 10, false, "transit / Logistic step, s"),

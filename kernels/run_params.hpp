@@ -12,6 +12,10 @@ enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
 enum class ZoneGoal { free_cell, midpoint };
+// MapZoning's ranking of zones: density first on open maps and distance
+// first with obstacles (Section 3.2), or always one way (Section 3.2.1's
+// "least coverage to highest", Algorithm 2's lines 5-9).
+enum class ZoneOrder { automatic, density, distance };
 // Eq. 8's reading at obstacle faces: push the point onto the face (as
 // printed), mirror it about the face (Eq. 7's form), or mirror it and reverse
 // the robot's motion along that axis from then on (a specular bounce, the
@@ -61,6 +65,7 @@ struct RunParams {
   double c = 0.25;          // Eq. 5 coefficient
   int zones_x = 4, zones_y = 4;
   ZoneGoal zone_goal = ZoneGoal::free_cell;  // where a transit to a zone goes
+  ZoneOrder zone_order = ZoneOrder::automatic;
   int th = 0;               // transit attempts per zone; 0 = auto (10 * L / 50)
   int dnh = 5;              // th grows by dnh when every zone failed
   double dt_c = 0.1;        // transit / Logistic step, s

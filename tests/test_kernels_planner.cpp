@@ -90,6 +90,27 @@ TEST(ZoneOrder, WithObstaclesNearestFirstTiesByDensity) {
   EXPECT_EQ(indices(order), (std::vector<int>{2, 1, 3}));
 }
 
+TEST(ZoneOrder, TheParameterPicksTheRankingOnEveryMap) {
+  // auto: by the map (Section 3.2); density (Section 3.2.1) and distance
+  // (Algorithm 2, lines 5-9) whatever the map.
+  EXPECT_FALSE(zones_distance_first(ZoneOrder::automatic, false));
+  EXPECT_TRUE(zones_distance_first(ZoneOrder::automatic, true));
+  for (bool obstacles : {false, true}) {
+    EXPECT_FALSE(zones_distance_first(ZoneOrder::density, obstacles));
+    EXPECT_TRUE(zones_distance_first(ZoneOrder::distance, obstacles));
+  }
+  const Environment env = square_map(8.0);
+  CoverageGrid g(env, 1.0);
+  const Zones zones(env, g, 2, 2, true, 0.5);
+  visit(g, 1, 0, 8);  // the two zones next to the robot's, half covered
+  visit(g, 0, 1, 8);
+  const auto z = zones.snapshot(g);
+  EXPECT_EQ(indices(zone_order(z, 0, 1.0, 1.0, zones_distance_first(ZoneOrder::density, false))),
+            (std::vector<int>{3, 1, 2}));  // the empty far zone first
+  EXPECT_EQ(indices(zone_order(z, 0, 1.0, 1.0, zones_distance_first(ZoneOrder::distance, false))),
+            (std::vector<int>{1, 2, 3}));  // the near ones first
+}
+
 TEST(ZoneOrder, ZonesWithoutFreeCellsAreNoCandidates) {
   const Environment env = square_map(8.0, {{4, 4, 8, 8}});  // zone 3 fully blocked
   CoverageGrid g(env, 1.0);
