@@ -56,6 +56,10 @@ std::vector<ParamInfo> make_table() {
                 "robot time of a transit point: dt_c each (Algorithm 4), or its distance from the previous "
                 "point at speed v",
                 "points", "distance"),
+      CW_CHOICE(transit_replan, TransitReplan,
+                "transit re-plan at an obstacle (Algorithm 4): a fresh Logistic path from the pushed-out point, "
+                "or the remaining Logistic points mapped anew from it",
+                "fresh", "reuse"),
       CW_REAL(logistic_r, 0, 4, false, "Logistic map parameter r"),
       CW_REAL(logistic_x0, 0, 1, false, "Logistic map initial state"),
       CW_INT(cheb_k, 2, 1000, "Chebyshev map order k"),

@@ -24,6 +24,10 @@ enum class ObstacleResponse { push, mirror, reflect };
 // Robot time a transit point costs: dt_c each (Algorithm 4 as printed), or
 // its distance from the previous point at speed v.
 enum class TransitTime { points, distance };
+// Algorithm 4's re-plan after a transit point met an obstacle: a fresh
+// Logistic path from the pushed-out point, or the remaining Logistic points
+// mapped anew from it (m <- m - i + 1, as printed).
+enum class TransitReplan { fresh, reuse };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
 // Seed 003: one mapped trajectory, the complete-coverage loop of contracted
 // sections, or the mirror-mapping baseline.
@@ -70,6 +74,7 @@ struct RunParams {
   int dnh = 5;              // th grows by dnh when every zone failed
   double dt_c = 0.1;        // transit / Logistic step, s
   TransitTime transit_time = TransitTime::points;
+  TransitReplan transit_replan = TransitReplan::fresh;
   double logistic_r = 4.0, logistic_x0 = 0.1;
 
   // Chebyshev planner (seed 001): two maps of order cheb_k from cheb_x0 and

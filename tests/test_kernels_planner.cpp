@@ -221,6 +221,28 @@ TEST(Transit, AroundAnObstacleIsRebuiltFromThePushedOutPointAndArrives) {
   EXPECT_TRUE(h.trace_avoids_obstacles());
 }
 
+TEST(Transit, ReusingTheRemainingLogisticPointsKeepsThePathsLength) {
+  // The Transit test above, with Algorithm 4's re-plan as printed: after a
+  // hit at point i the remaining m - i + 1 Logistic points are mapped anew,
+  // so the transit walks exactly the m - 1 points of its first plan
+  // (m = floor(16 m / 0.1 m) + 1), however often it was rebuilt.
+  RunParams p = mechanism_run(20.0);
+  p.th = 50;
+  p.start_x = 2.0;
+  p.start_y = 10.5;
+  const Environment env = square_map(20.0, {{9.5, 9.5, 10.5, 10.5}});
+  for (TransitReplan replan : {TransitReplan::reuse, TransitReplan::fresh}) {
+    p.transit_replan = replan;
+    Harness h(p, env);
+    ASSERT_TRUE(h.run->transit_to({18.0, 10.5}));
+    EXPECT_GE(h.r.transit_attempts, 1);
+    EXPECT_EQ(h.run->position().x, 18.0);
+    EXPECT_TRUE(h.trace_avoids_obstacles());
+    if (replan == TransitReplan::reuse) EXPECT_EQ(h.r.transit_points, 160);
+    else EXPECT_GT(h.r.transit_points, 160);  // each rebuild plans the rest anew
+  }
+}
+
 TEST(MapZoning, DropsUnreachableZonesAndRaisesThWhenAllFail) {
   RunParams p = mechanism_run(20.0);
   p.th = 3;
