@@ -30,6 +30,8 @@ void PlannerRun::map_zoning() {
     if (ended_) return;
     dropped[std::size_t(next->index)] = true;
     ++r_.zones_dropped;
+    // Algorithm 2 keeps only the Logistic map's initial conditions (line 36).
+    if (p_.logistic_reset == LogisticReset::drop) logistic_ = initial_logistic(p_);
   }
 }
 

@@ -62,6 +62,10 @@ std::vector<ParamInfo> make_table() {
                 "fresh", "reuse"),
       CW_REAL(logistic_r, 0, 4, false, "Logistic map parameter r"),
       CW_REAL(logistic_x0, 0, 1, false, "Logistic map initial state"),
+      CW_CHOICE(logistic_reset, LogisticReset,
+                "the transits' Logistic state: carried on (never reset), or reset to its initial value when a "
+                "zone is dropped (Algorithm 2, line 36)",
+                "never", "drop"),
       CW_INT(cheb_k, 2, 1000, "Chebyshev map order k"),
       CW_REAL(cheb_x0, -1, 1, false, "Chebyshev map initial value of the X map"),
       CW_REAL(cheb_y0, -1, 1, false, "Chebyshev map initial value of the Y map"),

@@ -38,6 +38,8 @@ Vec3<double> initial_state(const RunParams& p) {
   return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
 }
 
+LogisticMap initial_logistic(const RunParams& p) { return {p.logistic_x0, p.logistic_r}; }
+
 PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
                        TraceSink* trace)
     : p_(p), env_(env), grid_(grid), r_(r), trace_(trace),
@@ -45,7 +47,7 @@ PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid&
       budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
       k_{p.A, p.B, p.C}, u_(initial_state(p)), trig_(trig3(u_)), ds_(p.ds_index), h_(p.dt),
       last_visited_(0), th_(auto_th(p, env)), robot_(p, env, grid),
-      logistic_{p.logistic_x0, p.logistic_r}, zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
+      logistic_(initial_logistic(p)), zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
   last_visited_ = grid_.visited_cells();
   if (trace_) trace_->point({0.0, robot_.x(), robot_.y(), SegmentKind::start, ds_});
 }

@@ -55,6 +55,7 @@ class PlannerRun {
   bool transit_to(Point goal);
   Point position() const { return {robot_.x(), robot_.y()}; }
   int th() const { return th_; }
+  double logistic_state() const { return logistic_.x; }
   double time() const { return t_; }
 
  private:
@@ -122,5 +123,8 @@ inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
 
 // The perturbed Arnold initial state of a run (SPEC 1, "Chaotic spread").
 Vec3<double> initial_state(const RunParams& p);
+// The Logistic map a run starts from (and, with logistic_reset = drop,
+// restarts from when a zone is dropped).
+LogisticMap initial_logistic(const RunParams& p);
 
 }  // namespace chaosweep

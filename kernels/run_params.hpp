@@ -28,6 +28,9 @@ enum class TransitTime { points, distance };
 // Logistic path from the pushed-out point, or the remaining Logistic points
 // mapped anew from it (m <- m - i + 1, as printed).
 enum class TransitReplan { fresh, reuse };
+// The Logistic state of transits: carried on through the run, or also reset
+// to its initial value when a zone is dropped (Algorithm 2, lines 36-37).
+enum class LogisticReset { never, drop };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
 // Seed 003: one mapped trajectory, the complete-coverage loop of contracted
 // sections, or the mirror-mapping baseline.
@@ -76,6 +79,7 @@ struct RunParams {
   TransitTime transit_time = TransitTime::points;
   TransitReplan transit_replan = TransitReplan::fresh;
   double logistic_r = 4.0, logistic_x0 = 0.1;
+  LogisticReset logistic_reset = LogisticReset::never;
 
   // Chebyshev planner (seed 001): two maps of order cheb_k from cheb_x0 and
   // cheb_y0 give sub-goals in the free rectangles (Eqs. 9-11); the robot, a

@@ -627,6 +627,7 @@ case = [
   { label = "bounce-fold-mz", obstacle_response = "reflect", boundary = "fold", map_zoning = 1, c = 0.8, env = "one_square", start = [1, 8] },
   { label = "mz-density-first", map_zoning = 1, c = 0.8, zone_order = "density", env = "five_squares", start = [4.8, 1.6] },
   { label = "mz-replan-reuse", map_zoning = 1, c = 0.8, transit_replan = "reuse", env = "five_squares", start = [4.8, 1.6] },
+  { label = "mz-logistic-reset", map_zoning = 1, c = 0.8, zone_goal = "midpoint", logistic_reset = "drop", env = "five_squares", start = [4.8, 1.6] },
   { label = "mz-transit-distance", map_zoning = 1, c = 0.8, transit_time = "distance", env = "five_squares", start = [4.8, 1.6] },
 ]
 [fixed]

@@ -263,6 +263,23 @@ TEST(MapZoning, DropsUnreachableZonesAndRaisesThWhenAllFail) {
   EXPECT_EQ(run.th(), 3 + 5);                          // every zone failed: th += dnh
 }
 
+TEST(MapZoning, LogisticResetDropRestartsTheLogisticMapWhenAZoneIsDropped) {
+  RunParams p = mechanism_run(20.0);
+  p.th = 3;
+  p.zones_x = p.zones_y = 2;
+  p.zone_goal = ZoneGoal::midpoint;
+  p.start_x = p.start_y = 1.0;
+  const Environment env = square_map(20.0, {{3, 3, 7, 7}, {13, 3, 17, 7}, {3, 13, 7, 17}, {13, 13, 17, 17}});
+  for (LogisticReset reset : {LogisticReset::never, LogisticReset::drop}) {
+    p.logistic_reset = reset;
+    Harness h(p, env);
+    h.run->map_zoning();  // every zone is dropped, the last one after its transit
+    ASSERT_GE(h.r.zones_dropped, 3);
+    if (reset == LogisticReset::drop) EXPECT_EQ(h.run->logistic_state(), p.logistic_x0);
+    else EXPECT_NE(h.run->logistic_state(), p.logistic_x0);
+  }
+}
+
 TEST(MapZoning, AFailedZoneIsDroppedAndTheNextOneTried) {
   RunParams p = mechanism_run(20.0);
   p.th = 3;
