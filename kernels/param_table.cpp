@@ -90,6 +90,8 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(bounce_r, 0, 1, false, "bouncing robot: probability the rotation is exact"),
       CW_REAL(bounce_heading, -360, 360, false, "bouncing robot: initial heading, degrees"),
       CW_REAL(ic_jitter, 0, 1, false, "perturb ic uniformly in +-ic_jitter (seeded by seed)"),
+      CW_REAL(logistic_jitter, 0, 0.5, false,
+              "perturb logistic_x0 uniformly in +-logistic_jitter (seeded by seed, independently of ic)"),
       CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
       CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
       CW_REAL(C, -1e3, 1e3, false, "Arnold coefficient C"),
@@ -125,7 +127,7 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(stuck_time, 0, 1e10, false,
               "end as stuck after this long without a new cell, s (0: never)"),
       CW_INT(niter, 1, 1e9, "points per segment (SystemScaler call)"),
-      CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter)"),
+      CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter, logistic_jitter)"),
   };
   return t;
 }

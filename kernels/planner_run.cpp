@@ -38,7 +38,15 @@ Vec3<double> initial_state(const RunParams& p) {
   return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
 }
 
-LogisticMap initial_logistic(const RunParams& p) { return {p.logistic_x0, p.logistic_r}; }
+LogisticMap initial_logistic(const RunParams& p) {
+  double x0 = p.logistic_x0;
+  if (p.logistic_jitter > 0) {
+    std::uint64_t s = std::uint64_t(p.seed);
+    for (int k = 0; k < 3; ++k) (void)uniform_pm1(s);  // the draws of initial_state, whether used or not
+    x0 += p.logistic_jitter * uniform_pm1(s);
+  }
+  return {x0, p.logistic_r};
+}
 
 PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
                        TraceSink* trace)

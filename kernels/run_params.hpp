@@ -111,8 +111,9 @@ struct RunParams {
   double bounce_heading = 0;  // initial heading, degrees
 
   // Chaotic spread (SPEC 1): ic perturbed uniformly in +-ic_jitter per
-  // coordinate, drawn from `seed`.
+  // coordinate, and logistic_x0 in +-logistic_jitter, drawn from `seed`.
   double ic_jitter = 0.0;
+  double logistic_jitter = 0.0;
   std::int64_t seed = 0;
 };
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
 
 #include "control.hpp"
 #include "coverage_grid.hpp"
@@ -402,4 +403,33 @@ TEST(ChaoticSpread, IcJitterGivesDifferentRunsForDifferentSeeds) {
   const Vec3<double> u0 = initial_state(p);
   EXPECT_NEAR(u0.y, 1.0, 1e-6);
   EXPECT_NE(u0.y, 1.0);
+}
+
+TEST(ChaoticSpread, LogisticJitterSamplesTheLogisticPlannerAndLeavesIcAlone) {
+  RunParams p = small_run(20.0);
+  p.planner = Planner::logistic;
+  p.dc = 0.6;
+  p.ic_jitter = 1e-6;  // no Arnold state here: only the Logistic jitter can spread these runs
+  std::set<double> times;
+  for (std::int64_t seed = 0; seed < 4; ++seed) {
+    p.seed = seed;
+    times.insert(run_planner(p, square_map(20.0)).coverage_time);
+  }
+  EXPECT_EQ(times.size(), 1u);
+  p.logistic_jitter = 1e-6;
+  times.clear();
+  for (std::int64_t seed = 0; seed < 4; ++seed) {
+    p.seed = seed;
+    const RunResult r = run_planner(p, square_map(20.0));
+    EXPECT_EQ(r.status, Status::ok);
+    times.insert(r.coverage_time);
+    EXPECT_NEAR(initial_logistic(p).x, p.logistic_x0, 1e-6);
+  }
+  EXPECT_EQ(times.size(), 4u);
+  p.seed = 3;
+  const Vec3<double> u = initial_state(p);
+  p.logistic_jitter = 0;
+  const Vec3<double> u_without = initial_state(p);
+  EXPECT_EQ(u.x, u_without.x);  // the Arnold draws do not move
+  EXPECT_EQ(u.z, u_without.z);
 }
