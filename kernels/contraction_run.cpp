@@ -61,7 +61,7 @@ void run_contraction(const RunParams& p, const Environment& env, CoverageGrid& g
   }
   // Walk the path at speed v over the common grid; the coverage time is
   // when the walk first reaches dc (the path is laid whole either way).
-  const long needed = cells_needed(p.dc, grid.free_cells());
+  const long needed = cells_needed(p, grid);
   double t = 0;
   bool reached = false;
   for (std::size_t i = 0; i < path.size(); ++i) {

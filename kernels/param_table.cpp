@@ -121,7 +121,11 @@ std::vector<ParamInfo> make_table() {
       CW_CHOICE(sampling, Sampling,
                 "cells visited: by the segment between samples, or by the samples only",
                 "segments", "points"),
-      CW_REAL(dc, 1e-6, 1, false, "desired coverage, fraction of free cells"),
+      CW_CHOICE(coverage_cells, CoverageCells,
+                "what coverage counts: visited free cells of the free cells, or (all) visited free cells plus "
+                "obstacle cells of all cells (Eq. 5's c_T = all cells)",
+                "free", "all"),
+      CW_REAL(dc, 1e-6, 1, false, "desired coverage, fraction of free cells (coverage_cells = all: of all cells)"),
       CW_REAL(max_time, 0, 1e10, false, "robot-time budget, s (0: max_pr * T_opt)"),
       CW_REAL(max_pr, 1e-3, 1e6, false, "budget in multiples of T_opt when max_time = 0"),
       CW_REAL(stuck_time, 0, 1e10, false,

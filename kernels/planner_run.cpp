@@ -51,7 +51,7 @@ LogisticMap initial_logistic(const RunParams& p) {
 PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
                        TraceSink* trace)
     : p_(p), env_(env), grid_(grid), r_(r), trace_(trace),
-      needed_(cells_needed(p.dc, grid.free_cells())),
+      needed_(cells_needed(p, grid)),
       budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
       k_{p.A, p.B, p.C}, u_(initial_state(p)), trig_(trig3(u_)), ds_(p.ds_index), h_(p.dt),
       last_visited_(0), th_(auto_th(p, env)), robot_(p, env, grid),
@@ -104,7 +104,7 @@ void PlannerRun::begin_segment() {
 void PlannerRun::end_segment() {
   const long c_n = grid_.visited_cells() - seg_before_;
   const bool keep_exploring =
-      !p_.map_zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), seg_c_u_, grid_.free_cells(), p_.c);
+      !p_.map_zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), seg_c_u_, cells_total(p_, grid_), p_.c);
   if (!keep_exploring) {
     map_zoning();
   } else if (p_.index_switching && c_n <= p_.switch_min_new) {

@@ -11,6 +11,9 @@ enum class Planner { arnold, logistic, chebyshev, contraction, bouncing };
 enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
+// What the coverage tc counts: visited free cells of the free cells (SPEC 1),
+// or visited free cells plus the (known) obstacle cells of all cells.
+enum class CoverageCells { free_cells, all_cells };
 enum class ZoneGoal { free_cell, midpoint };
 // MapZoning's ranking of zones: density first on open maps and distance
 // first with obstacles (Section 3.2), or always one way (Section 3.2.1's
@@ -59,6 +62,7 @@ struct RunParams {
   ObstacleResponse obstacle_response = ObstacleResponse::push;
   Integrator integrator = Integrator::rk4;
   Sampling sampling = Sampling::segments;
+  CoverageCells coverage_cells = CoverageCells::free_cells;
   double dc = 0.9;          // desired coverage
   double max_time = 0.0;    // robot-time budget, s; 0 = auto (max_pr * T_opt)
   double max_pr = 20.0;     // auto budget in multiples of T_opt
@@ -120,7 +124,7 @@ struct RunParams {
 struct RunResult {
   Status status = Status::invalid;
   double coverage_time = unset;  // robot time when coverage first reached dc (ok only)
-  double final_coverage = 0.0;   // visited free cells / free cells at the end
+  double final_coverage = 0.0;   // tc at the end (visited free cells / free cells, see coverage_cells)
   std::int64_t steps = 0;        // accepted integration steps
   double t_end = 0.0;            // robot time at the end of the run
   double t_opt = unset;          // lawnmower reference time

@@ -628,6 +628,8 @@ case = [
   { label = "mz-density-first", map_zoning = 1, c = 0.8, zone_order = "density", env = "five_squares", start = [4.8, 1.6] },
   { label = "mz-replan-reuse", map_zoning = 1, c = 0.8, transit_replan = "reuse", env = "five_squares", start = [4.8, 1.6] },
   { label = "mz-logistic-reset", map_zoning = 1, c = 0.8, zone_goal = "midpoint", logistic_reset = "drop", env = "five_squares", start = [4.8, 1.6] },
+  { label = "all-cells", coverage_cells = "all", env = "five_squares", start = [4.8, 1.6] },
+  { label = "mz-all-cells", map_zoning = 1, c = 0.8, coverage_cells = "all", env = "one_square", start = [1, 8] },
   { label = "mz-transit-distance", map_zoning = 1, c = 0.8, transit_time = "distance", env = "five_squares", start = [4.8, 1.6] },
 ]
 [fixed]

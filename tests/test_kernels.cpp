@@ -491,6 +491,32 @@ TEST(Metrics, CellsNeededIsTheSmallestCountReachingDc) {
   EXPECT_EQ(cells_needed(0.5, 16), 8);
 }
 
+TEST(Metrics, CoverageOfAllCellsCountsTheObstacleCellsAsCovered) {
+  // 10 x 10 cells, a 4 x 4 obstacle: 84 free, 16 blocked.
+  const Environment env = square_map(10.0, {{3, 3, 7, 7}});
+  const CoverageGrid g(env, 1.0);
+  ASSERT_EQ(g.free_cells(), 84);
+  ASSERT_EQ(g.blocked_cells(), 16);
+  RunParams p = small_run(10.0);
+  p.dc = 0.9;
+  EXPECT_EQ(cells_needed(p, g), 76);  // 75.6 of 84
+  EXPECT_EQ(cells_total(p, g), 84);
+  EXPECT_DOUBLE_EQ(coverage_rate(p, g, 42), 0.5);
+  p.coverage_cells = CoverageCells::all_cells;
+  EXPECT_EQ(cells_needed(p, g), 90 - 16);  // 90 of 100 cells, 16 of them the obstacle's
+  EXPECT_EQ(cells_total(p, g), 100);
+  EXPECT_DOUBLE_EQ(coverage_rate(p, g, 42), 0.58);
+  p.dc = 0.1;
+  EXPECT_EQ(cells_needed(p, g), 0);  // the obstacle alone is 16%
+  // A run: it stops at 74 visited free cells, reporting tc over all cells.
+  p.dc = 0.9;
+  p.start_x = p.start_y = 1.0;
+  const RunResult r = run_planner(p, env);
+  ASSERT_EQ(r.status, Status::ok);
+  EXPECT_EQ(r.visited_cells, 74);
+  EXPECT_DOUBLE_EQ(r.final_coverage, 0.9);
+}
+
 TEST(Planner, ReportsCoverageTOptAndPrOnATinyMap) {
   RunParams p = small_run(4.0);
   p.dc = 0.5;
