@@ -410,6 +410,58 @@ void expect_drawn(const std::string& png, int w, int h) {
   EXPECT_GT(p.non_white, 0.03) << png << ": almost nothing drawn";
 }
 
+TEST(Tables, ReadingsGiveEachRowsRangeAndTheObstacleToOpenRatioBesideThePapers) {
+  // Row 9 (200 m, SR 4, open) ran once, under push; row 10 (its five-obstacle
+  // case) under push and mirror. Paper: 53,600 s and 35,100 s (ratio 0.655).
+  TempDir dir;
+  std::vector<RunRow> rows;
+  auto add = [&](const std::string& label, const std::string& env, ObstacleResponse resp, std::vector<double> cts) {
+    RunParams p;
+    p.size_x = p.size_y = 200;
+    p.sr = 4;
+    p.obstacle_response = resp;
+    for (std::size_t s = 0; s < cts.size(); ++s) {
+      p.seed = std::int64_t(s);
+      rows.push_back(make_row(std::int64_t(rows.size()), p, env, label, cts[s]));
+      rows.back().result.free_cells = env == "no_obstacles" ? 2500 : 1472;
+    }
+  };
+  add("9", "no_obstacles", ObstacleResponse::push, {50000, 60000});
+  add("10", "five_squares", ObstacleResponse::push, {40000, 44000});
+  add("10", "five_squares", ObstacleResponse::mirror, {30000, 38000, timeout});
+  write_results(dir.file("r.h5"), rows);
+  test::write_file(dir.file("paper.csv"), "row,paper_ct,paper_pr\n9,53600,6.0\n10,35100,6.6\n");
+  TableOptions opt;
+  opt.paper = dir.file("paper.csv");
+  const TextTable t = make_table("readings", ResultSet::load({dir.file("r.h5")}), opt);
+  ASSERT_EQ(t.header[0], "reading");
+  ASSERT_EQ(t.rows.size(), 3u);
+  auto col = [&](const std::string& name) { return std::size_t(std::find(t.header.begin(), t.header.end(), name) - t.header.begin()); };
+  // In run order: the defaults (rows 9 and 10), then mirror.
+  const auto& mirror = t.rows[2];
+  EXPECT_EQ(mirror[0], "obstacle_response=mirror");  // what differs from the defaults
+  EXPECT_EQ(t.rows[0][0], "defaults");
+  EXPECT_EQ(mirror[col("row")], "10");
+  EXPECT_EQ(mirror[col("ok")], "2/3");
+  EXPECT_EQ(mirror[col("median CT")], "38000");  // the timeout counts as infinite
+  EXPECT_EQ(mirror[col("paper in [min, max]")], "yes");
+  EXPECT_EQ(mirror[col("open row")], "9");  // the push reading's: an open map has no obstacle to respond to
+  EXPECT_EQ(mirror[col("CT / open")], "0.69");    // 38000 / 55000
+  EXPECT_EQ(mirror[col("paper CT / open")], "0.65");  // 35100 / 53600
+  EXPECT_EQ(mirror[col("ratio / paper's")], "1.06");
+  // Resampling {30000, 38000, inf} and {50000, 60000}: the ratio's median
+  // spans 30000/60000 to inf (two of three resampled runs timing out).
+  EXPECT_EQ(mirror[col("ratio / paper's, 90% interval")], "-");
+  EXPECT_EQ(t.rows[0][col("row")], "9");
+  EXPECT_EQ(t.rows[0][col("open row")], "-");
+  const auto& push = t.rows[1];
+  EXPECT_EQ(push[col("row")], "10");
+  EXPECT_EQ(push[col("paper in [min, max]")], "no");  // 35,100 below our min 40,000
+  EXPECT_EQ(push[col("CT / open")], "0.76");
+  // 40000/60000 to 44000/50000 over 0.655: [1.02, 1.34].
+  EXPECT_EQ(push[col("ratio / paper's, 90% interval")], "[1.02, 1.34]");
+}
+
 // A parameter is printed as the double it is (0.1 + 0.2 is not 0.3), in every
 // table and figure CSV; computed numbers are rounded for reading in Markdown
 // but carried in full in CSV.
