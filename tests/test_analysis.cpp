@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -335,23 +336,38 @@ fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
 TEST(Tables, Seed002GivesAMixtureOnTheSimplexAndThePlansByAngles) {
   const auto r = test::run_chaosweep("table seed002 --bins 24 --format csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  double sum = 0;
+  // Both fits of Eq. 5: over the configurations (as written) and over the
+  // position cells; each alpha on the simplex.
+  std::map<std::string, std::vector<double>> alpha;
   std::istringstream in(r.out);
   std::string line;
-  int alphas = 0;
   while (std::getline(in, line))
-    if (line.rfind("mixture weight alpha,", 0) == 0) {
-      const std::string rest = line.substr(line.find(',', 21) + 1);
-      const double a = std::stod(rest.substr(0, rest.find(',')));
-      EXPECT_GE(a, 0.0) << line;
-      sum += a;
-      ++alphas;
+    for (const char* space : {"configurations", "position cells"})
+      if (line.rfind(std::string("mixture weight alpha fitted on ") + space, 0) == 0) {
+        const std::string rest = line.substr(line.find(" deg,") + 5);
+        alpha[space].push_back(std::stod(rest.substr(0, rest.find(','))));
+      }
+  ASSERT_EQ(alpha.size(), 2u) << r.out;
+  for (const auto& [space, a] : alpha) {
+    ASSERT_EQ(a.size(), 3u) << space;
+    double sum = 0;
+    for (double x : a) {
+      EXPECT_GE(x, 0.0) << space;
+      sum += x;
     }
-  EXPECT_EQ(alphas, 3);
-  EXPECT_NEAR(sum, 1.0, 2e-3);  // printed to 3 decimals
-  EXPECT_NE(r.out.find("mixture weight alpha,30 deg,"), std::string::npos);
+    EXPECT_NEAR(sum, 1.0, 2e-3) << space;  // printed to 3 decimals
+  }
+  // On this map the fits differ: over positions the 75-degree policy alone
+  // (a vertex), over configurations a mixture of two.
+  EXPECT_EQ(alpha["position cells"], (std::vector<double>{0, 1, 0}));
+  EXPECT_GT(alpha["configurations"][1], 0.0);
+  EXPECT_GT(alpha["configurations"][2], 0.0);
   EXPECT_NE(r.out.find(",0.221"), std::string::npos);  // the paper's, beside ours
-  EXPECT_NE(r.out.find("plans using 1 bouncing angle (%)"), std::string::npos) << r.out;
+  // Plans by angles used: ours and the paper's navigation setting.
+  EXPECT_NE(r.out.find("plans using 1 bouncing angle (%),\"{30, 75, 315} deg, 24 bins, w2 2, 64 sources\","),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("plans using 3 bouncing angles (%),\"{45, 90, 135} deg, 8 bins, w2 100, 1464 sources\","),
+            std::string::npos) << r.out;
 }
 
 TEST(Grouping, QuantileInterpolatesLikeNumpy) {
