@@ -27,7 +27,7 @@ int auto_th(const RunParams& p, const Environment& env) {
 
 }  // namespace
 
-Vec3<double> initial_state(const RunParams& p) {
+Vec3<double> jittered_ic(const RunParams& p) {
   Vec3<double> u{p.ic_x, p.ic_y, p.ic_z};
   if (p.ic_jitter > 0) {
     std::uint64_t s = std::uint64_t(p.seed);
@@ -35,6 +35,11 @@ Vec3<double> initial_state(const RunParams& p) {
     u.y += p.ic_jitter * uniform_pm1(s);
     u.z += p.ic_jitter * uniform_pm1(s);
   }
+  return u;
+}
+
+Vec3<double> initial_state(const RunParams& p) {
+  const Vec3<double> u = jittered_ic(p);
   return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
 }
 

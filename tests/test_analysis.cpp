@@ -333,6 +333,49 @@ fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
   EXPECT_EQ(r.exit_code, 2);
 }
 
+TEST(Tables, Seed003SpreadGivesTable2OverJitteredSamplesAndTable3sCollapseShare) {
+  TempDir dir;
+  // experiments/seed003_spread.toml in miniature: 8 samples, ic +-1e-6 and +-1.
+  test::write_file(dir.file("s.toml"), R"(
+[fixed]
+planner = "contraction"
+c3_mode = "map"
+size = 20
+sr = 1
+A = 1
+B = 0.5
+C = 0.5
+ic = [4, 3.5, 0]
+start = [10, 10]
+[axes]
+ic_jitter = [1e-6, 1]
+seed = { start = 0, stop = 7, step = 1 }
+[[part]]
+name = "table1-spread"
+fixed = { c3_n = 800, ds_index = 3 }
+[[part]]
+name = "table3-spread"
+fixed = { ds_index = 3, c3_n = 19200 }
+)");
+  auto r = test::run_chaosweep("sweep " + dir.file("s.toml") + " -o " + dir.file("r.h5") + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run_chaosweep("table seed003 " + dir.file("r.h5") + " --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // A 1e-6 perturbation does not grow within 800 steps: the literal model's
+  // 30.75% every time, sd 0 (the paper's Table 2: 47.6, sd 8.0).
+  EXPECT_NE(r.out.find("Table 2 (spread),\"heading z, ic +-1e-06, 8 samples\",mean coverage %,30.75,47.6\n"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 2 (spread),\"heading z, ic +-1e-06, 8 samples\",standard deviation (n - 1),0,8.0062\n"),
+            std::string::npos) << r.out;
+  // A perturbation of 1 gives each sample its own trajectory, hence a spread.
+  const std::string sd1 = "Table 2 (spread),\"heading z, ic +-1, 8 samples\",standard deviation (n - 1),";
+  const auto at = r.out.find(sd1);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_GT(std::stod(r.out.substr(at + sd1.size())), 1.0);
+  EXPECT_NE(r.out.find("Table 3 (spread),\"n = 19200, ic +-1, 8 samples\",share of samples at <= 12% (collapsed),"),
+            std::string::npos) << r.out;
+}
+
 TEST(Tables, Seed002GivesAMixtureOnTheSimplexAndThePlansByAngles) {
   const auto r = test::run_chaosweep("table seed002 --bins 24 --format csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
