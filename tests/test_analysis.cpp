@@ -290,10 +290,8 @@ TEST(Tables, Seed001NeedsNoResultsAndShowsThePapersValues) {
   EXPECT_NE(bad.err.find("give one or more result files"), std::string::npos) << bad.err;
 }
 
-TEST(Tables, Seed003ComparesTablesOneToThreeLoopAndMirrorWithThePaper) {
-  TempDir dir;
-  // experiments/seed003.toml in miniature: the same parts, fewer values.
-  test::write_file(dir.file("s.toml"), R"(
+// Seed 003's robot and workplace (experiments/seed003.toml's [fixed]).
+constexpr const char* seed003_robot = R"(
 [fixed]
 planner = "contraction"
 size = 20
@@ -302,6 +300,12 @@ A = 1
 B = 0.5
 C = 0.5
 ic = [4, 3.5, 0]
+)";
+
+TEST(Tables, Seed003ComparesTablesOneToThreeLoopAndMirrorWithThePaper) {
+  TempDir dir;
+  // experiments/seed003.toml in miniature: the same parts, fewer values.
+  test::write_file(dir.file("s.toml"), std::string(seed003_robot) + R"(
 [[part]]
 name = "table1"
 fixed = { c3_mode = "map", c3_n = 800 }
@@ -336,16 +340,8 @@ fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
 TEST(Tables, Seed003SpreadGivesTable2OverJitteredSamplesAndTable3sCollapseShare) {
   TempDir dir;
   // experiments/seed003_spread.toml in miniature: 8 samples, ic +-1e-6 and +-1.
-  test::write_file(dir.file("s.toml"), R"(
-[fixed]
-planner = "contraction"
+  test::write_file(dir.file("s.toml"), std::string(seed003_robot) + R"(
 c3_mode = "map"
-size = 20
-sr = 1
-A = 1
-B = 0.5
-C = 0.5
-ic = [4, 3.5, 0]
 start = [10, 10]
 [axes]
 ic_jitter = [1e-6, 1]

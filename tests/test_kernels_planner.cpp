@@ -63,6 +63,22 @@ RunParams mechanism_run(double side) {
   return p;
 }
 
+// MapZoning on a 20 m map of 2 x 2 zones with paper-literal goals (the
+// midpoints (5, 5), (15, 5), (5, 15), (15, 15)), th = 3, the robot at (1, 1).
+RunParams midpoint_zoning_run() {
+  RunParams p = mechanism_run(20.0);
+  p.th = 3;
+  p.zones_x = p.zones_y = 2;
+  p.zone_goal = ZoneGoal::midpoint;
+  p.start_x = p.start_y = 1.0;
+  return p;
+}
+
+// Obstacles over every one of those midpoints.
+Environment blocked_midpoints() {
+  return square_map(20.0, {{3, 3, 7, 7}, {13, 3, 17, 7}, {3, 13, 7, 17}, {13, 13, 17, 17}});
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------ zones
@@ -245,16 +261,11 @@ TEST(Transit, ReusingTheRemainingLogisticPointsKeepsThePathsLength) {
 }
 
 TEST(MapZoning, DropsUnreachableZonesAndRaisesThWhenAllFail) {
-  RunParams p = mechanism_run(20.0);
-  p.th = 3;
+  RunParams p = midpoint_zoning_run();
   p.dnh = 5;
-  p.zones_x = p.zones_y = 2;
-  p.zone_goal = ZoneGoal::midpoint;  // paper-literal: midpoints inside obstacles
-  p.start_x = p.start_y = 1.0;
   // Obstacles over every zone midpoint: each transit fails after th attempts
   // (the robot's own zone, which changes as it moves, is never a candidate).
-  const Environment env = square_map(20.0, {{3, 3, 7, 7}, {13, 3, 17, 7}, {3, 13, 7, 17}, {13, 13, 17, 17}});
-  Harness h(p, env);
+  Harness h(p, blocked_midpoints());
   PlannerRun& run = *h.run;
   RunResult& r = h.r;
   run.map_zoning();
@@ -265,15 +276,10 @@ TEST(MapZoning, DropsUnreachableZonesAndRaisesThWhenAllFail) {
 }
 
 TEST(MapZoning, LogisticResetDropRestartsTheLogisticMapWhenAZoneIsDropped) {
-  RunParams p = mechanism_run(20.0);
-  p.th = 3;
-  p.zones_x = p.zones_y = 2;
-  p.zone_goal = ZoneGoal::midpoint;
-  p.start_x = p.start_y = 1.0;
-  const Environment env = square_map(20.0, {{3, 3, 7, 7}, {13, 3, 17, 7}, {3, 13, 7, 17}, {13, 13, 17, 17}});
+  RunParams p = midpoint_zoning_run();
   for (LogisticReset reset : {LogisticReset::never, LogisticReset::drop}) {
     p.logistic_reset = reset;
-    Harness h(p, env);
+    Harness h(p, blocked_midpoints());
     h.run->map_zoning();  // every zone is dropped, the last one after its transit
     ASSERT_GE(h.r.zones_dropped, 3);
     if (reset == LogisticReset::drop) EXPECT_EQ(h.run->logistic_state(), p.logistic_x0);
@@ -282,11 +288,7 @@ TEST(MapZoning, LogisticResetDropRestartsTheLogisticMapWhenAZoneIsDropped) {
 }
 
 TEST(MapZoning, AFailedZoneIsDroppedAndTheNextOneTried) {
-  RunParams p = mechanism_run(20.0);
-  p.th = 3;
-  p.zones_x = p.zones_y = 2;
-  p.zone_goal = ZoneGoal::midpoint;
-  p.start_x = p.start_y = 1.0;
+  const RunParams p = midpoint_zoning_run();
   // Only zone 1's midpoint (15, 5), the nearest candidate, is blocked.
   const Environment env = square_map(20.0, {{13, 3, 17, 7}});
   Harness h(p, env);
