@@ -401,9 +401,9 @@ FigureOutput cheb_lyapunov(const FigureOptions& opt, const std::string& path) {
   return out;
 }
 
-// Seed 002: the best mixture's limiting distribution over the position cells
-// as a heatmap (relative to uniform: 1 = the uniform share); the CSV holds
-// every policy's column too.
+// Seed 002: the best mixture's (Eq. 5 fitted on the configurations) limiting
+// distribution over the position cells as a heatmap (relative to uniform: 1 =
+// the uniform share); the CSV holds every policy's column too.
 FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   Seed002Options so;
   so.bins = opt.bins;
@@ -437,7 +437,8 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   FigureOutput out{path, csv_beside(path), {}};
   std::ostringstream alpha;
   for (Eigen::Index k = 0; k < a.alpha.size(); ++k) alpha << (k ? ", " : "") << fmt_fixed(a.alpha(k), 3);
-  out.lines.push_back("alpha = (" + alpha.str() + "), ||Pi alpha - b|| = " + fmt_sig(a.residual, 4));
+  out.lines.push_back("alpha = (" + alpha.str() + "), fitted on the configurations (Eq. 5), ||Pi alpha - b|| = " +
+                      fmt_sig(a.residual, 4));
   csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;

@@ -1,5 +1,6 @@
 #include "seed003.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -73,6 +74,35 @@ TextTable seed003_table(const ResultSet& rs) {
     const auto p = paper_t3.find(n);
     t.add_row({"Table 3", "n = " + std::to_string(n), "coverage % from (10, 10), heading z", fixed_cell(pct(rs, r), 2),
                p == paper_t3.end() ? "-" : fixed_cell(p->second, 2)});
+  }
+  // The chaotic spread (experiments/seed003_spread.toml): Table 2's mean and
+  // sd over ic-jittered samples per heading, and Table 3's coverage over
+  // samples per n, with the share that collapsed to the paper's ~10%.
+  for (const Group& g : group_rows(rs, {"ic_jitter", "ds_index"}, part_rows(rs, "table1-spread"))) {
+    std::vector<double> v;
+    for (std::size_t r : g.rows) v.push_back(pct(rs, r));
+    const double mean = value_statistic(v, "mean");
+    double ss = 0;
+    for (double x : v) ss += (x - mean) * (x - mean);
+    const int ds = int(std::lround(g.key_num[1]));
+    const std::string row = "heading " + std::string(heading_name(ds)) + ", ic +-" + g.key[0] + ", " +
+                            std::to_string(v.size()) + " samples";
+    t.add_row({"Table 2 (spread)", row, "mean coverage %", fixed_cell(mean, 3), fixed_cell(paper_mean[ds - 1], 3)});
+    t.add_row({"Table 2 (spread)", row, "standard deviation (n - 1)",
+               fixed_cell(v.size() > 1 ? std::sqrt(ss / double(v.size() - 1)) : 0.0, 4), fixed_cell(paper_sd[ds - 1], 4)});
+  }
+  for (const Group& g : group_rows(rs, {"ic_jitter", "c3_n"}, part_rows(rs, "table3-spread"))) {
+    std::vector<double> v;
+    for (std::size_t r : g.rows) v.push_back(pct(rs, r));
+    const int n = int(std::lround(g.key_num[1]));
+    const auto p = paper_t3.find(n);
+    const std::string row = "n = " + std::to_string(n) + ", ic +-" + g.key[0] + ", " + std::to_string(v.size()) + " samples";
+    t.add_row({"Table 3 (spread)", row, "median coverage % [min, max]",
+               fmt_fixed(value_statistic(v, "median"), 2) + " [" + fmt_fixed(value_statistic(v, "min"), 2) + ", " +
+                   fmt_fixed(value_statistic(v, "max"), 2) + "]",
+               p == paper_t3.end() ? "-" : fixed_cell(p->second, 2)});
+    const double collapsed = double(std::count_if(v.begin(), v.end(), [](double x) { return x <= 12.0; })) / double(v.size());
+    t.add_row({"Table 3 (spread)", row, "share of samples at <= 12% (collapsed)", fixed_cell(collapsed, 3), "-"});
   }
   // Section 6.
   for (std::size_t r : part_rows(rs, "loop")) {

@@ -14,6 +14,7 @@
 #include "seed001.hpp"
 #include "seed002.hpp"
 #include "seed003.hpp"
+#include "table1_readings.hpp"
 
 namespace chaosweep {
 
@@ -135,6 +136,8 @@ TextTable summary_table(const ResultSet& rs, const TableOptions& opt) {
 
 // ---------------------------------------------------------------- table1
 
+}  // namespace
+
 std::map<std::string, std::pair<double, double>> read_paper(const std::string& path) {
   std::map<std::string, std::pair<double, double>> out;
   if (path.empty()) return out;
@@ -163,12 +166,14 @@ std::map<std::string, std::pair<double, double>> read_paper(const std::string& p
   return out;
 }
 
+namespace {
 bool flag(const ResultSet& rs, const char* col, const std::vector<std::size_t>& rows) {
   if (!rs.has(col)) return false;
   for (std::size_t r : rows)
     if (rs.num(col)[r] != 0) return true;
   return false;
 }
+}  // namespace
 
 // The technique set of a case: what its runs switch on. Scaling is on when
 // any run of the case has f != 1 (a search over f includes f = 1).
@@ -189,6 +194,8 @@ double label_number(const std::string& s) {
   const double v = std::strtod(s.c_str(), &end);
   return end && *end == '\0' && !s.empty() ? v : nan;
 }
+
+namespace {
 
 TextTable table1(const ResultSet& rs, const TableOptions& opt) {
   for (const char* c : {"size_x", "sr", "env", "c", "ds_index", "f", "coverage_time", "status", "t_opt"})
@@ -316,6 +323,7 @@ const std::vector<TableKind>& table_kinds() {
          return seed002_table(o);
        }},
       {"seed003", true, [](const ResultSet& rs, const TableOptions&) { return seed003_table(rs); }},
+      {"readings", true, table1_readings},
   };
   return kinds;
 }

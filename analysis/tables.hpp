@@ -1,5 +1,6 @@
 #pragma once
 // The tables `chaosweep table NAME` prints, each built from result rows.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,14 @@ const std::vector<std::string>& table_names();
 // seed001: the Chebyshev map's own numbers (Lyapunov exponents, v(xy)) beside
 // seed 001's; computed, so it reads no result file.
 bool table_needs_results(const std::string& name);
+
+// The paper's Table 1 values by row (row,paper_ct,paper_pr); none for an
+// empty path.
+std::map<std::string, std::pair<double, double>> read_paper(const std::string& path);
+// A case's technique set ("original", "IS", "MZ+SC", "Logistic map", ...).
+std::string technique(const ResultSet& rs, const std::vector<std::size_t>& rows);
+// A label as a number (NaN when it is not one).
+double label_number(const std::string& s);
 
 // A parameter tuple's score: the median coverage time of its runs, a run
 // that did not reach the target counting as infinitely long (so a tuple

@@ -21,10 +21,15 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
       "  summary  per --by group (default: variant): runs, ok rate, CT quantiles, median PR\n"
       "  seed001  seed 001's Chebyshev-map numbers (Lyapunov exponents, v(xy)) beside ours;\n"
       "           computed, no result file\n"
-      "  seed002  seed 002's policy mixture alpha for {30, 75, 315} deg beside the paper's, and\n"
-      "           plans by bouncing angles used, on experiments/envs/seed002_map (computed)\n"
+      "  seed002  seed 002's policy mixture alpha for {30, 75, 315} deg beside the paper's (Eq. 5\n"
+      "           fitted on the configurations and on the position cells), and plans by bouncing\n"
+      "           angles used (ours and the paper's {45, 90, 135} deg, 8 bins, w2 100), on\n"
+      "           experiments/envs/seed002_map (computed)\n"
       "  seed003  seed 003's Tables 1-3, loop and mirror mapping beside ours, from the results\n"
       "           of experiments/seed003.toml\n"
+      "  readings Table 1 rows under readings of the paper (experiments/table1_readings.toml):\n"
+      "           per reading (--by, else the reading parameters that vary) and row, CT beside\n"
+      "           --paper's, and each obstacle row's ratio to its open-map row beside the paper's\n"
       "Example: chaosweep table best out/fig6/results.h5 --top 10");
   struct Opts {
     std::string name, format = "md", out, by, params;
@@ -38,13 +43,13 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--format", o->format, "md, csv or tex")->capture_default_str();
   cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
   add_force_flag(*cmd, o->force);
-  cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary)");
+  cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary, readings)");
   cmd->add_option("--params", o->params, "parameter columns, comma-separated (best)");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--bins", o->table.bins, "seed002: orientation bins (360: the paper's 1 degree; about a minute)")
       ->check(CLI::Range(4, 3600));
   cmd->add_option("--top", o->table.top, "tuples per group (best)")->check(CLI::Range(1, 1000000));
-  cmd->add_option("--paper", o->table.paper, "table1: CSV with row,paper_ct,paper_pr")->check(CLI::ExistingFile);
+  cmd->add_option("--paper", o->table.paper, "table1, readings: CSV with row,paper_ct,paper_pr")->check(CLI::ExistingFile);
   cmd->callback([o, &action] {
     action = [o]() -> int {
       return run_reporting<AnalysisError>("table", [&]() -> int {

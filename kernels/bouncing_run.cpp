@@ -43,7 +43,7 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
   double total = 0;
   for (const Policy& q : pol) total += q.alpha;
   std::uint64_t rng = std::uint64_t(p.seed) * 0x9e3779b97f4a7c15ULL + 0x2545f4914f6cdd1dULL;
-  const long needed = cells_needed(p.dc, grid.free_cells());
+  const long needed = cells_needed(p, grid);
   const double budget = p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt;
   constexpr double deg = std::numbers::pi / 180.0;
   double x = p.start_x, y = p.start_y, heading = p.bounce_heading, t = 0;

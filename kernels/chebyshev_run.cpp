@@ -23,7 +23,7 @@ class ChebyshevRun {
  public:
   ChebyshevRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r, TraceSink* trace)
       : p_(p), grid_(grid), r_(r), trace_(trace), d_(decompose_free_space(env, p.radius)),
-        needed_(cells_needed(p.dc, grid.free_cells())),
+        needed_(cells_needed(p, grid)),
         budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt), x_(p.cheb_x0), y_(p.cheb_y0),
         px_(p.start_x), py_(p.start_y) {
     grid_.mark_point(px_, py_);

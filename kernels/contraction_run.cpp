@@ -5,6 +5,7 @@
 #include "contraction.hpp"
 #include "metrics.hpp"
 #include "param_table.hpp"
+#include "planner_run.hpp"
 
 namespace chaosweep {
 
@@ -13,7 +14,10 @@ namespace {
 seed003::Seed003Robot robot_of(const RunParams& p) {
   seed003::Seed003Robot r;
   r.A = p.A, r.B = p.B, r.C = p.C;
-  r.ic = {p.ic_x, p.ic_y, p.ic_z};
+  // ic_jitter samples the chaotic spread here too (unwrapped: with no jitter
+  // the state is ic bit for bit).
+  const Vec3<double> ic = jittered_ic(p);
+  r.ic = {ic.x, ic.y, ic.z};
   r.heading = seed003::Heading(p.ds_index);
   r.v = p.v;
   r.h = p.dt;
@@ -61,7 +65,7 @@ void run_contraction(const RunParams& p, const Environment& env, CoverageGrid& g
   }
   // Walk the path at speed v over the common grid; the coverage time is
   // when the walk first reaches dc (the path is laid whole either way).
-  const long needed = cells_needed(p.dc, grid.free_cells());
+  const long needed = cells_needed(p, grid);
   double t = 0;
   bool reached = false;
   for (std::size_t i = 0; i < path.size(); ++i) {

@@ -20,6 +20,7 @@ class CoverageGrid {
   double inv_cell_size() const { return inv_cell_; }
   int ny() const { return ny_; }
   int free_cells() const { return free_; }
+  int blocked_cells() const { return nx_ * ny_ - free_; }
   int visited_cells() const { return visited_; }
   double coverage() const { return free_ > 0 ? double(visited_) / double(free_) : 0.0; }
   Cell at(int i, int j) const { return Cell(cells_[std::size_t(j) * nx_ + i]); }

@@ -67,15 +67,19 @@ double slack(double x, double y, double fo) { return 1e-9 * (std::fabs(x) + std:
 
 Rect grown_by(const Rect& r, double fo) { return {r.x0 - fo, r.y0 - fo, r.x1 + fo, r.y1 + fo}; }
 
-// Eq. 8 for one obstacle's grown rectangle: to its nearest face.
-void push_to_face(const Rect& grown, double& x, double& y) {
+// Moves the point to the face of least penetration of `grown` (Eq. 8 as
+// printed) or, with `mirror`, reflects it about that face (Eq. 7 applied at
+// the obstacle), counting the face's axis in `hit`.
+void move_to_face(const Rect& grown, bool mirror, double& x, double& y, ObstacleHit& hit) {
   const double to_left = x - grown.x0, to_right = grown.x1 - x;
   const double to_bottom = y - grown.y0, to_top = grown.y1 - y;
   const double m = std::min({to_left, to_right, to_bottom, to_top});
-  if (m == to_left) x = grown.x0;
-  else if (m == to_right) x = grown.x1;
-  else if (m == to_bottom) y = grown.y0;
-  else y = grown.y1;
+  auto place = [mirror](double& u, double face) { u = mirror ? (face + face) - u : face; };
+  if (m == to_left) place(x, grown.x0), ++hit.x_faces;
+  else if (m == to_right) place(x, grown.x1), ++hit.x_faces;
+  else if (m == to_bottom) place(y, grown.y0), ++hit.y_faces;
+  else place(y, grown.y1), ++hit.y_faces;
+  hit.moved = true;
 }
 
 }  // namespace
@@ -111,37 +115,38 @@ bool Environment::near_obstacle(double x, double y, double fo) const {
 }
 
 bool push_out_of_obstacles(const Environment& env, double fo, double& x, double& y) {
-  bool moved = false;
+  return keep_out_of_obstacles(env, fo, false, x, y).moved;
+}
+
+ObstacleHit keep_out_of_obstacles(const Environment& env, double fo, bool mirror, double& x, double& y) {
+  ObstacleHit hit;
   const ObstacleIndex* ix = env.usable_index();
-  // A push can land in a neighbour's margin; a few rounds settle any layout
+  // A move can land in a neighbour's margin; a few rounds settle any layout
   // whose obstacles are not packed tighter than 2*fo.
   for (int round = 0; round < 8; ++round) {
-    bool again = false;
+    const int before = hit.x_faces + hit.y_faces;
     if (!ix) {
       for (const Rect& r : env.obstacles) {
         const Rect grown = grown_by(r, fo);
-        if (!grown.contains(x, y)) continue;
-        push_to_face(grown, x, y);
-        moved = again = true;
+        if (grown.contains(x, y)) move_to_face(grown, mirror, x, y, hit);
       }
     } else {
       // The same pass in the same order: the next obstacle (by index) whose
       // grown rectangle holds the point as it now is, among those near it.
       for (std::size_t next = 0;;) {
-        std::size_t hit = env.obstacles.size();
+        std::size_t found = env.obstacles.size();
         const double s = fo + slack(x, y, fo);
         ix->find(x - s, y - s, x + s, y + s, [&](std::size_t k) {
-          return k >= next && grown_by(env.obstacles[k], fo).contains(x, y) && (hit = k, true);
+          return k >= next && grown_by(env.obstacles[k], fo).contains(x, y) && (found = k, true);
         });
-        if (hit == env.obstacles.size()) break;
-        push_to_face(grown_by(env.obstacles[hit], fo), x, y);
-        moved = again = true;
-        next = hit + 1;
+        if (found == env.obstacles.size()) break;
+        move_to_face(grown_by(env.obstacles[found], fo), mirror, x, y, hit);
+        next = found + 1;
       }
     }
-    if (!again) break;
+    if (hit.x_faces + hit.y_faces == before) break;
   }
-  return moved;
+  return hit;
 }
 
 std::vector<unsigned char> cells_clear_of_obstacles(const Environment& env, double fo, int nx, int ny, double cell) {

@@ -45,6 +45,19 @@ struct Environment {
 // Returns true when the point was moved.
 bool push_out_of_obstacles(const Environment& env, double fo, double& x, double& y);
 
+// What keep_out_of_obstacles did: moved the point at all, and how many times
+// it crossed a face along each axis (odd: the axis's motion is reversed).
+struct ObstacleHit {
+  bool moved = false;
+  int x_faces = 0, y_faces = 0;
+};
+
+// The same test and the same face as push_out_of_obstacles (least
+// penetration into the obstacle grown by fo); `mirror` = false puts the
+// coordinate on that face (Eq. 8 as printed, X = M_left - fo), true reflects
+// it about the face (Eq. 7 applied at the obstacle: X = -X + 2 (M_left - fo)).
+ObstacleHit keep_out_of_obstacles(const Environment& env, double fo, bool mirror, double& x, double& y);
+
 // 1 for each cell of an nx x ny grid of side `cell` (row-major; the last
 // row and column reach the map's edge) in which no position lies within fo
 // of an obstacle, so that Eq. 8 moves none: the cell, widened by a margin

@@ -114,7 +114,7 @@ class LaneDriver final : public LaneSink {
   void complete(Slot& s) {
     s.run->finish();
     RunResult& r = results_[s.item];
-    conclude_run(*s.grid, r);
+    conclude_run(*items_[s.item].params, *s.grid, r);
     r.wall_time = std::chrono::duration<double>(clock_type::now() - s.t0).count();
     s.run.reset();
     count(r);

@@ -1,6 +1,10 @@
 #pragma once
 // Reference times and coverage thresholds of docs/spec.md §1.
+#include <algorithm>
 #include <cmath>
+
+#include "coverage_grid.hpp"
+#include "run_params.hpp"
 
 namespace chaosweep {
 
@@ -17,6 +21,26 @@ inline long cells_needed(double dc, long free_cells) {
   while (k > 0 && double(k - 1) / double(free_cells) >= dc) --k;
   while (double(k) / double(free_cells) < dc) ++k;
   return k;
+}
+
+// The cells tc counts beyond the visited free ones, and its denominator
+// (Eq. 5's c_T): none and the free cells (docs/spec.md §1), or, with coverage_cells =
+// all, the obstacle cells (known to the robot, so covered) and every cell.
+inline long cells_counted_covered(const RunParams& p, const CoverageGrid& g) {
+  return p.coverage_cells == CoverageCells::all_cells ? g.blocked_cells() : 0;
+}
+inline long cells_total(const RunParams& p, const CoverageGrid& g) {
+  return g.free_cells() + cells_counted_covered(p, g);
+}
+
+// Visited free cells a run needs for tc >= dc.
+inline long cells_needed(const RunParams& p, const CoverageGrid& g) {
+  return std::max(0L, cells_needed(p.dc, cells_total(p, g)) - cells_counted_covered(p, g));
+}
+
+// tc with `visited` free cells visited.
+inline double coverage_rate(const RunParams& p, const CoverageGrid& g, long visited) {
+  return double(visited + cells_counted_covered(p, g)) / double(cells_total(p, g));
 }
 
 }  // namespace chaosweep

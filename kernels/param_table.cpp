@@ -45,11 +45,27 @@ std::vector<ParamInfo> make_table() {
                 "transit goal: the zone midpoint, or (free) the nearest free cell when the midpoint "
                 "is within fo of an obstacle",
                 "free", "midpoint"),
+      CW_CHOICE(zone_order, ZoneOrder,
+                "MapZoning's zone ranking: auto (lowest density first on open maps, nearest first with "
+                "obstacles), or always density or distance first (ties by the other)",
+                "auto", "density", "distance"),
       CW_INT(th, 0, 1e9, "transit attempts per zone (0: 10 * L / 50)"),
       CW_INT(dnh, 0, 1e9, "th grows by dnh when every zone failed"),
       CW_REAL(dt_c, 1e-6, 10, false, "transit / Logistic step, s"),
+      CW_CHOICE(transit_time, TransitTime,
+                "robot time of a transit point: dt_c each (Algorithm 4), or its distance from the previous "
+                "point at speed v",
+                "points", "distance"),
+      CW_CHOICE(transit_replan, TransitReplan,
+                "transit re-plan at an obstacle (Algorithm 4): a fresh Logistic path from the pushed-out point, "
+                "or the remaining Logistic points mapped anew from it",
+                "fresh", "reuse"),
       CW_REAL(logistic_r, 0, 4, false, "Logistic map parameter r"),
       CW_REAL(logistic_x0, 0, 1, false, "Logistic map initial state"),
+      CW_CHOICE(logistic_reset, LogisticReset,
+                "the transits' Logistic state: carried on (never reset), or reset to its initial value when a "
+                "zone is dropped (Algorithm 2, line 36)",
+                "never", "drop"),
       CW_INT(cheb_k, 2, 1000, "Chebyshev map order k"),
       CW_REAL(cheb_x0, -1, 1, false, "Chebyshev map initial value of the X map"),
       CW_REAL(cheb_y0, -1, 1, false, "Chebyshev map initial value of the Y map"),
@@ -74,6 +90,8 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(bounce_r, 0, 1, false, "bouncing robot: probability the rotation is exact"),
       CW_REAL(bounce_heading, -360, 360, false, "bouncing robot: initial heading, degrees"),
       CW_REAL(ic_jitter, 0, 1, false, "perturb ic uniformly in +-ic_jitter (seeded by seed)"),
+      CW_REAL(logistic_jitter, 0, 0.5, false,
+              "perturb logistic_x0 uniformly in +-logistic_jitter (seeded by seed, independently of ic)"),
       CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
       CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
       CW_REAL(C, -1e3, 1e3, false, "Arnold coefficient C"),
@@ -94,18 +112,26 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(start_y, -1e9, 1e9, true, "start Y, m (unset: the environment's start)"),
       CW_CHOICE(boundary, Boundary, "wall handling: Eq. 7 mirror or unfolded-plane fold",
                 "mirror", "fold"),
+      CW_CHOICE(obstacle_response, ObstacleResponse,
+                "obstacle faces (Eq. 8): push the point onto the face + fo, mirror it about that line, or "
+                "mirror it and reverse the motion along that axis (a bounce)",
+                "push", "mirror", "reflect"),
       CW_CHOICE(integrator, Integrator, "fixed-step RK4 or RK4 with step doubling", "rk4",
                 "rk4-doubling"),
       CW_CHOICE(sampling, Sampling,
                 "cells visited: by the segment between samples, or by the samples only",
                 "segments", "points"),
-      CW_REAL(dc, 1e-6, 1, false, "desired coverage, fraction of free cells"),
+      CW_CHOICE(coverage_cells, CoverageCells,
+                "what coverage counts: visited free cells of the free cells, or (all) visited free cells plus "
+                "obstacle cells of all cells (Eq. 5's c_T = all cells)",
+                "free", "all"),
+      CW_REAL(dc, 1e-6, 1, false, "desired coverage, fraction of free cells (coverage_cells = all: of all cells)"),
       CW_REAL(max_time, 0, 1e10, false, "robot-time budget, s (0: max_pr * T_opt)"),
       CW_REAL(max_pr, 1e-3, 1e6, false, "budget in multiples of T_opt when max_time = 0"),
       CW_REAL(stuck_time, 0, 1e10, false,
               "end as stuck after this long without a new cell, s (0: never)"),
       CW_INT(niter, 1, 1e9, "points per segment (SystemScaler call)"),
-      CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter)"),
+      CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter, logistic_jitter)"),
   };
   return t;
 }

@@ -64,9 +64,9 @@ bool prepare_run(const RunParams& p, const Environment& env, std::optional<Cover
   return true;
 }
 
-void conclude_run(const CoverageGrid& grid, RunResult& r) {
+void conclude_run(const RunParams& p, const CoverageGrid& grid, RunResult& r) {
   r.visited_cells = grid.visited_cells();
-  r.final_coverage = grid.coverage();
+  r.final_coverage = coverage_rate(p, grid, grid.visited_cells());
   if (r.status == Status::ok) r.pr = r.coverage_time / r.t_opt;
 }
 
@@ -78,7 +78,7 @@ RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* tra
   else if (p.planner == Planner::contraction) run_contraction(p, env, *grid, r, trace);
   else if (p.planner == Planner::bouncing) run_bouncing(p, env, *grid, r, trace);
   else PlannerRun(p, env, *grid, r, trace).run();
-  conclude_run(*grid, r);
+  conclude_run(p, *grid, r);
   return r;
 }
 

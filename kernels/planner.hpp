@@ -25,6 +25,6 @@ RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* tra
 // and set up the grid and reference values (false: r says why it is invalid),
 // and fill the coverage outputs once the run has ended.
 bool prepare_run(const RunParams& p, const Environment& env, std::optional<CoverageGrid>& grid, RunResult& r);
-void conclude_run(const CoverageGrid& grid, RunResult& r);
+void conclude_run(const RunParams& p, const CoverageGrid& grid, RunResult& r);
 
 }  // namespace chaosweep

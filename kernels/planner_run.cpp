@@ -27,7 +27,7 @@ int auto_th(const RunParams& p, const Environment& env) {
 
 }  // namespace
 
-Vec3<double> initial_state(const RunParams& p) {
+Vec3<double> jittered_ic(const RunParams& p) {
   Vec3<double> u{p.ic_x, p.ic_y, p.ic_z};
   if (p.ic_jitter > 0) {
     std::uint64_t s = std::uint64_t(p.seed);
@@ -35,17 +35,32 @@ Vec3<double> initial_state(const RunParams& p) {
     u.y += p.ic_jitter * uniform_pm1(s);
     u.z += p.ic_jitter * uniform_pm1(s);
   }
+  return u;
+}
+
+Vec3<double> initial_state(const RunParams& p) {
+  const Vec3<double> u = jittered_ic(p);
   return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
+}
+
+LogisticMap initial_logistic(const RunParams& p) {
+  double x0 = p.logistic_x0;
+  if (p.logistic_jitter > 0) {
+    std::uint64_t s = std::uint64_t(p.seed);
+    for (int k = 0; k < 3; ++k) (void)uniform_pm1(s);  // the draws of initial_state, whether used or not
+    x0 += p.logistic_jitter * uniform_pm1(s);
+  }
+  return {x0, p.logistic_r};
 }
 
 PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
                        TraceSink* trace)
     : p_(p), env_(env), grid_(grid), r_(r), trace_(trace),
-      needed_(cells_needed(p.dc, grid.free_cells())),
+      needed_(cells_needed(p, grid)),
       budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
       k_{p.A, p.B, p.C}, u_(initial_state(p)), trig_(trig3(u_)), ds_(p.ds_index), h_(p.dt),
       last_visited_(0), th_(auto_th(p, env)), robot_(p, env, grid),
-      logistic_{p.logistic_x0, p.logistic_r}, zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
+      logistic_(initial_logistic(p)), zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
   last_visited_ = grid_.visited_cells();
   if (trace_) trace_->point({0.0, robot_.x(), robot_.y(), SegmentKind::start, ds_});
 }
@@ -94,7 +109,7 @@ void PlannerRun::begin_segment() {
 void PlannerRun::end_segment() {
   const long c_n = grid_.visited_cells() - seg_before_;
   const bool keep_exploring =
-      !p_.map_zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), seg_c_u_, grid_.free_cells(), p_.c);
+      !p_.map_zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), seg_c_u_, cells_total(p_, grid_), p_.c);
   if (!keep_exploring) {
     map_zoning();
   } else if (p_.index_switching && c_n <= p_.switch_min_new) {
@@ -140,7 +155,10 @@ void PlannerRun::write_lane(LaneArrays& a, int l) {
   a.steps[l] = double(r_.steps);
   a.seg_step[l] = seg_step_;
   a.niter[l] = p_.niter;
-  a.fast[l] = trace_ != nullptr ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
+  // A bouncing robot's displacement takes signs the vector code does not
+  // apply: its steps all go to the scalar path (correct first; fast later).
+  const bool bounces = p_.obstacle_response == ObstacleResponse::reflect && !env_.obstacles.empty();
+  a.fast[l] = trace_ != nullptr || bounces ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
   // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
   // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
   const bool fold = p_.boundary == Boundary::fold;

@@ -55,6 +55,7 @@ class PlannerRun {
   bool transit_to(Point goal);
   Point position() const { return {robot_.x(), robot_.y()}; }
   int th() const { return th_; }
+  double logistic_state() const { return logistic_.x; }
   double time() const { return t_; }
 
  private:
@@ -120,7 +121,13 @@ inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
   return ended_;
 }
 
-// The perturbed Arnold initial state of a run (docs/spec.md §1, "Chaotic spread").
+// The perturbed Arnold initial state of a run (docs/spec.md §1, "Chaotic spread"):
+// ic + ic_jitter * uniform(-1, 1) per coordinate, and the same wrapped into
+// [-pi, pi] (the Arnold planners' state).
+Vec3<double> jittered_ic(const RunParams& p);
 Vec3<double> initial_state(const RunParams& p);
+// The Logistic map a run starts from (and, with logistic_reset = drop,
+// restarts from when a zone is dropped).
+LogisticMap initial_logistic(const RunParams& p);
 
 }  // namespace chaosweep

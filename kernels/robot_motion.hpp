@@ -1,7 +1,7 @@
 #pragma once
 // Applies a displacement to the robot and keeps it in the free workspace:
-// boundary (Eq. 7 mirror or fold), then obstacles (Eq. 8). Records the visited
-// cells on the coverage grid.
+// boundary (Eq. 7 mirror or fold), then obstacles (Eq. 8, read as
+// obstacle_response). Records the visited cells on the coverage grid.
 #include <algorithm>
 
 #include "boundary.hpp"
@@ -14,7 +14,9 @@ namespace chaosweep {
 class RobotMotion {
  public:
   RobotMotion(const RunParams& p, const Environment& env, CoverageGrid& grid)
-      : env_(env), grid_(grid), boundary_(p.boundary), sampling_(p.sampling), fo_(p.fo),
+      : env_(env), grid_(grid), boundary_(p.boundary), sampling_(p.sampling),
+        mirror_(p.obstacle_response != ObstacleResponse::push),
+        reflect_(p.obstacle_response == ObstacleResponse::reflect), fo_(p.fo),
         x_(p.start_x), y_(p.start_y), ux_(p.start_x), uy_(p.start_y) {
     grid_.mark_point(x_, y_);
   }
@@ -44,6 +46,8 @@ class RobotMotion {
   // Always inlined: it runs once per step of every lane.
   [[gnu::always_inline]] void move(double dx, double dy) {
     const double px = x_, py = y_;
+    dx *= sx_;  // +-1: exact, so the other responses move by (dx, dy) bit for bit
+    dy *= sy_;
     if (boundary_ == Boundary::mirror) {
       x_ = mirror_eq7(x_ + dx, 0.0, env_.lx, fo_);
       y_ = mirror_eq7(y_ + dy, 0.0, env_.ly, fo_);
@@ -65,7 +69,12 @@ class RobotMotion {
 
   void push_out() {
     const double bx = x_, by = y_;
-    if (!push_out_of_obstacles(env_, fo_, x_, y_)) return;
+    const ObstacleHit hit = keep_out_of_obstacles(env_, fo_, mirror_, x_, y_);
+    if (!hit.moved) return;
+    if (reflect_) {  // a bounce: the motion along each axis reflected an odd number of times reverses
+      if (hit.x_faces % 2) sx_ = -sx_;
+      if (hit.y_faces % 2) sy_ = -sy_;
+    }
     // A push near a wall must not leave the map.
     x_ = std::clamp(x_, 0.0, env_.lx);
     y_ = std::clamp(y_, 0.0, env_.ly);
@@ -80,7 +89,9 @@ class RobotMotion {
   CoverageGrid& grid_;
   Boundary boundary_;
   Sampling sampling_;
+  bool mirror_, reflect_;  // obstacle_response (see ObstacleResponse)
   double fo_;
+  double sx_ = 1.0, sy_ = 1.0;  // reflect: the signs the displacement takes (a bounce reverses one)
   double x_, y_;    // position in the map
   double ux_, uy_;  // unfolded position (fold boundary only)
 };

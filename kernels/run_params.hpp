@@ -11,7 +11,29 @@ enum class Planner { arnold, logistic, chebyshev, contraction, bouncing };
 enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
+// What the coverage tc counts: visited free cells of the free cells (docs/spec.md §1),
+// or visited free cells plus the (known) obstacle cells of all cells.
+enum class CoverageCells { free_cells, all_cells };
 enum class ZoneGoal { free_cell, midpoint };
+// MapZoning's ranking of zones: density first on open maps and distance
+// first with obstacles (Section 3.2), or always one way (Section 3.2.1's
+// "least coverage to highest", Algorithm 2's lines 5-9).
+enum class ZoneOrder { automatic, density, distance };
+// Eq. 8's reading at obstacle faces: push the point onto the face (as
+// printed), mirror it about the face (Eq. 7's form), or mirror it and reverse
+// the robot's motion along that axis from then on (a specular bounce, the
+// fold's reading at obstacles).
+enum class ObstacleResponse { push, mirror, reflect };
+// Robot time a transit point costs: dt_c each (Algorithm 4 as printed), or
+// its distance from the previous point at speed v.
+enum class TransitTime { points, distance };
+// Algorithm 4's re-plan after a transit point met an obstacle: a fresh
+// Logistic path from the pushed-out point, or the remaining Logistic points
+// mapped anew from it (m <- m - i + 1, as printed).
+enum class TransitReplan { fresh, reuse };
+// The Logistic state of transits: carried on through the run, or also reset
+// to its initial value when a zone is dropped (Algorithm 2, lines 36-37).
+enum class LogisticReset { never, drop };
 enum class Status { ok, timeout, diverged, stuck, invalid, error };
 // Seed 003: one mapped trajectory, the complete-coverage loop of contracted
 // sections, or the mirror-mapping baseline.
@@ -37,8 +59,10 @@ struct RunParams {
   double sr = 1.0;       // sensing range = cell side, m
   double start_x = unset, start_y = unset;  // unset: the environment's start, else (fo, fo)
   Boundary boundary = Boundary::mirror;
+  ObstacleResponse obstacle_response = ObstacleResponse::push;
   Integrator integrator = Integrator::rk4;
   Sampling sampling = Sampling::segments;
+  CoverageCells coverage_cells = CoverageCells::free_cells;
   double dc = 0.9;          // desired coverage
   double max_time = 0.0;    // robot-time budget, s; 0 = auto (max_pr * T_opt)
   double max_pr = 20.0;     // auto budget in multiples of T_opt
@@ -52,10 +76,14 @@ struct RunParams {
   double c = 0.25;          // Eq. 5 coefficient
   int zones_x = 4, zones_y = 4;
   ZoneGoal zone_goal = ZoneGoal::free_cell;  // where a transit to a zone goes
+  ZoneOrder zone_order = ZoneOrder::automatic;
   int th = 0;               // transit attempts per zone; 0 = auto (10 * L / 50)
   int dnh = 5;              // th grows by dnh when every zone failed
   double dt_c = 0.1;        // transit / Logistic step, s
+  TransitTime transit_time = TransitTime::points;
+  TransitReplan transit_replan = TransitReplan::fresh;
   double logistic_r = 4.0, logistic_x0 = 0.1;
+  LogisticReset logistic_reset = LogisticReset::never;
 
   // Chebyshev planner (seed 001): two maps of order cheb_k from cheb_x0 and
   // cheb_y0 give sub-goals in the free rectangles (Eqs. 9-11); the robot, a
@@ -87,15 +115,16 @@ struct RunParams {
   double bounce_heading = 0;  // initial heading, degrees
 
   // Chaotic spread (docs/spec.md §1): ic perturbed uniformly in +-ic_jitter per
-  // coordinate, drawn from `seed`.
+  // coordinate, and logistic_x0 in +-logistic_jitter, drawn from `seed`.
   double ic_jitter = 0.0;
+  double logistic_jitter = 0.0;
   std::int64_t seed = 0;
 };
 
 struct RunResult {
   Status status = Status::invalid;
   double coverage_time = unset;  // robot time when coverage first reached dc (ok only)
-  double final_coverage = 0.0;   // visited free cells / free cells at the end
+  double final_coverage = 0.0;   // tc at the end (visited free cells / free cells, see coverage_cells)
   std::int64_t steps = 0;        // accepted integration steps
   double t_end = 0.0;            // robot time at the end of the run
   double t_opt = unset;          // lawnmower reference time

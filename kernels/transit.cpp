@@ -4,7 +4,7 @@
 
 namespace chaosweep {
 
-std::vector<Point> transit_path(Point start, Point goal, double v, double dt_c, LogisticMap& map) {
+std::vector<Point> logistic_positions(Point start, Point goal, double v, double dt_c, LogisticMap& map) {
   const double d = std::hypot(goal.x - start.x, goal.y - start.y);
   const std::size_t m = std::max<std::size_t>(2, std::size_t(std::floor(d / (v * dt_c))) + 1);
   const bool rightwards = goal.x >= start.x;
@@ -15,14 +15,26 @@ std::vector<Point> transit_path(Point start, Point goal, double v, double dt_c, 
     const double th = map.heading(rightwards);
     p[i] = {p[i - 1].x + dt_c * v * std::cos(th), p[i - 1].y + dt_c * v * std::sin(th)};
   }
-  // Q_1 = start - P_1 = 0; Q_m = goal - P_m.
-  const Point q_end{goal.x - p[m - 1].x, goal.y - p[m - 1].y};
-  for (std::size_t i = 1; i < m; ++i) {
-    const double s = double(i) / double(m - 1);
-    p[i].x += s * q_end.x;
-    p[i].y += s * q_end.y;
+  return p;
+}
+
+void map_positions(const std::vector<Point>& P, std::size_t from, Point first, Point goal, std::vector<Point>& path) {
+  const std::size_t m = P.size();
+  path.resize(m);
+  const Point q0{first.x - P[from].x, first.y - P[from].y};
+  const Point q1{goal.x - P[m - 1].x, goal.y - P[m - 1].y};
+  const double span = double(m - 1 - from);
+  for (std::size_t k = from; k < m; ++k) {
+    const double s = double(k - from) / span;
+    path[k] = {P[k].x + (1.0 - s) * q0.x + s * q1.x, P[k].y + (1.0 - s) * q0.y + s * q1.y};
   }
-  p[m - 1] = goal;  // exact, whatever the rounding of s * q_end
+  path[from] = first;  // exact, whatever the rounding of the corrections
+  path[m - 1] = goal;
+}
+
+std::vector<Point> transit_path(Point start, Point goal, double v, double dt_c, LogisticMap& map) {
+  std::vector<Point> p = logistic_positions(start, goal, v, dt_c, map);
+  if (!p.empty()) map_positions(p, 0, start, goal, p);
   return p;
 }
 

@@ -57,16 +57,20 @@ std::vector<ZoneInfo> Zones::snapshot(const CoverageGrid& grid) const {
 }
 
 std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, double x, double y,
-                                 bool obstacles) {
+                                 bool distance_first) {
   std::erase_if(zones, [&](const ZoneInfo& z) {
     return z.free_cells == 0 || !z.has_goal || z.index == robot_zone;
   });
   auto key = [&](const ZoneInfo& z) {
     const double d = std::hypot(z.goal_x - x, z.goal_y - y);
-    return obstacles ? std::tuple{d, z.density(), z.index} : std::tuple{z.density(), d, z.index};
+    return distance_first ? std::tuple{d, z.density(), z.index} : std::tuple{z.density(), d, z.index};
   };
   std::sort(zones.begin(), zones.end(), [&](const ZoneInfo& a, const ZoneInfo& b) { return key(a) < key(b); });
   return zones;
+}
+
+bool zones_distance_first(ZoneOrder order, bool obstacles) {
+  return order == ZoneOrder::distance || (order == ZoneOrder::automatic && obstacles);
 }
 
 }  // namespace chaosweep

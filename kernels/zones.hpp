@@ -5,6 +5,7 @@
 
 #include "coverage_grid.hpp"
 #include "environment.hpp"
+#include "run_params.hpp"
 
 namespace chaosweep {
 
@@ -38,10 +39,14 @@ class Zones {
 };
 
 // Candidate zones in the order MapZoning tries them (docs/spec.md §2): zones with a free
-// cell and a goal, except the robot's. Without obstacles: lowest density
-// first, ties by distance to the goal; with obstacles: nearest goal first,
-// ties by lowest density. Remaining ties by zone index.
+// cell and a goal, except the robot's. Lowest density first, ties by distance
+// to the goal; or (distance_first) nearest goal first, ties by lowest density.
+// Remaining ties by zone index.
 std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, double x, double y,
-                                 bool obstacles);
+                                 bool distance_first);
+
+// Whether a run ranks zones distance first: zone_order = auto does on maps
+// with obstacles only (Section 3.2), density and distance always the one way.
+bool zones_distance_first(ZoneOrder order, bool obstacles);
 
 }  // namespace chaosweep

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -289,10 +290,8 @@ TEST(Tables, Seed001NeedsNoResultsAndShowsThePapersValues) {
   EXPECT_NE(bad.err.find("give one or more result files"), std::string::npos) << bad.err;
 }
 
-TEST(Tables, Seed003ComparesTablesOneToThreeLoopAndMirrorWithThePaper) {
-  TempDir dir;
-  // experiments/seed003.toml in miniature: the same parts, fewer values.
-  test::write_file(dir.file("s.toml"), R"(
+// Seed 003's robot and workplace (experiments/seed003.toml's [fixed]).
+constexpr const char* seed003_robot = R"(
 [fixed]
 planner = "contraction"
 size = 20
@@ -301,6 +300,12 @@ A = 1
 B = 0.5
 C = 0.5
 ic = [4, 3.5, 0]
+)";
+
+TEST(Tables, Seed003ComparesTablesOneToThreeLoopAndMirrorWithThePaper) {
+  TempDir dir;
+  // experiments/seed003.toml in miniature: the same parts, fewer values.
+  test::write_file(dir.file("s.toml"), std::string(seed003_robot) + R"(
 [[part]]
 name = "table1"
 fixed = { c3_mode = "map", c3_n = 800 }
@@ -332,26 +337,76 @@ fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
   EXPECT_EQ(r.exit_code, 2);
 }
 
+TEST(Tables, Seed003SpreadGivesTable2OverJitteredSamplesAndTable3sCollapseShare) {
+  TempDir dir;
+  // experiments/seed003_spread.toml in miniature: 8 samples, ic +-1e-6 and +-1.
+  test::write_file(dir.file("s.toml"), std::string(seed003_robot) + R"(
+c3_mode = "map"
+start = [10, 10]
+[axes]
+ic_jitter = [1e-6, 1]
+seed = { start = 0, stop = 7, step = 1 }
+[[part]]
+name = "table1-spread"
+fixed = { c3_n = 800, ds_index = 3 }
+[[part]]
+name = "table3-spread"
+fixed = { ds_index = 3, c3_n = 19200 }
+)");
+  auto r = test::run_chaosweep("sweep " + dir.file("s.toml") + " -o " + dir.file("r.h5") + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run_chaosweep("table seed003 " + dir.file("r.h5") + " --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // A 1e-6 perturbation does not grow within 800 steps: the literal model's
+  // 30.75% every time, sd 0 (the paper's Table 2: 47.6, sd 8.0).
+  EXPECT_NE(r.out.find("Table 2 (spread),\"heading z, ic +-1e-06, 8 samples\",mean coverage %,30.75,47.6\n"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 2 (spread),\"heading z, ic +-1e-06, 8 samples\",standard deviation (n - 1),0,8.0062\n"),
+            std::string::npos) << r.out;
+  // A perturbation of 1 gives each sample its own trajectory, hence a spread.
+  const std::string sd1 = "Table 2 (spread),\"heading z, ic +-1, 8 samples\",standard deviation (n - 1),";
+  const auto at = r.out.find(sd1);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_GT(std::stod(r.out.substr(at + sd1.size())), 1.0);
+  EXPECT_NE(r.out.find("Table 3 (spread),\"n = 19200, ic +-1, 8 samples\",share of samples at <= 12% (collapsed),"),
+            std::string::npos) << r.out;
+}
+
 TEST(Tables, Seed002GivesAMixtureOnTheSimplexAndThePlansByAngles) {
   const auto r = test::run_chaosweep("table seed002 --bins 24 --format csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  double sum = 0;
+  // Both fits of Eq. 5: over the configurations (as written) and over the
+  // position cells; each alpha on the simplex.
+  std::map<std::string, std::vector<double>> alpha;
   std::istringstream in(r.out);
   std::string line;
-  int alphas = 0;
   while (std::getline(in, line))
-    if (line.rfind("mixture weight alpha,", 0) == 0) {
-      const std::string rest = line.substr(line.find(',', 21) + 1);
-      const double a = std::stod(rest.substr(0, rest.find(',')));
-      EXPECT_GE(a, 0.0) << line;
-      sum += a;
-      ++alphas;
+    for (const char* space : {"configurations", "position cells"})
+      if (line.rfind(std::string("mixture weight alpha fitted on ") + space, 0) == 0) {
+        const std::string rest = line.substr(line.find(" deg,") + 5);
+        alpha[space].push_back(std::stod(rest.substr(0, rest.find(','))));
+      }
+  ASSERT_EQ(alpha.size(), 2u) << r.out;
+  for (const auto& [space, a] : alpha) {
+    ASSERT_EQ(a.size(), 3u) << space;
+    double sum = 0;
+    for (double x : a) {
+      EXPECT_GE(x, 0.0) << space;
+      sum += x;
     }
-  EXPECT_EQ(alphas, 3);
-  EXPECT_NEAR(sum, 1.0, 2e-3);  // printed to 3 decimals
-  EXPECT_NE(r.out.find("mixture weight alpha,30 deg,"), std::string::npos);
+    EXPECT_NEAR(sum, 1.0, 2e-3) << space;  // printed to 3 decimals
+  }
+  // On this map the fits differ: over positions the 75-degree policy alone
+  // (a vertex), over configurations a mixture of two.
+  EXPECT_EQ(alpha["position cells"], (std::vector<double>{0, 1, 0}));
+  EXPECT_GT(alpha["configurations"][1], 0.0);
+  EXPECT_GT(alpha["configurations"][2], 0.0);
   EXPECT_NE(r.out.find(",0.221"), std::string::npos);  // the paper's, beside ours
-  EXPECT_NE(r.out.find("plans using 1 bouncing angle (%)"), std::string::npos) << r.out;
+  // Plans by angles used: ours and the paper's navigation setting.
+  EXPECT_NE(r.out.find("plans using 1 bouncing angle (%),\"{30, 75, 315} deg, 24 bins, w2 2, 64 sources\","),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("plans using 3 bouncing angles (%),\"{45, 90, 135} deg, 8 bins, w2 100, 1464 sources\","),
+            std::string::npos) << r.out;
 }
 
 TEST(Grouping, QuantileInterpolatesLikeNumpy) {
@@ -408,6 +463,58 @@ void expect_drawn(const std::string& png, int w, int h) {
   EXPECT_EQ(p.height, h) << png;
   EXPECT_GT(p.colours, 8u) << png << ": a blank or single-colour image";
   EXPECT_GT(p.non_white, 0.03) << png << ": almost nothing drawn";
+}
+
+TEST(Tables, ReadingsGiveEachRowsRangeAndTheObstacleToOpenRatioBesideThePapers) {
+  // Row 9 (200 m, SR 4, open) ran once, under push; row 10 (its five-obstacle
+  // case) under push and mirror. Paper: 53,600 s and 35,100 s (ratio 0.655).
+  TempDir dir;
+  std::vector<RunRow> rows;
+  auto add = [&](const std::string& label, const std::string& env, ObstacleResponse resp, std::vector<double> cts) {
+    RunParams p;
+    p.size_x = p.size_y = 200;
+    p.sr = 4;
+    p.obstacle_response = resp;
+    for (std::size_t s = 0; s < cts.size(); ++s) {
+      p.seed = std::int64_t(s);
+      rows.push_back(make_row(std::int64_t(rows.size()), p, env, label, cts[s]));
+      rows.back().result.free_cells = env == "no_obstacles" ? 2500 : 1472;
+    }
+  };
+  add("9", "no_obstacles", ObstacleResponse::push, {50000, 60000});
+  add("10", "five_squares", ObstacleResponse::push, {40000, 44000});
+  add("10", "five_squares", ObstacleResponse::mirror, {30000, 38000, timeout});
+  write_results(dir.file("r.h5"), rows);
+  test::write_file(dir.file("paper.csv"), "row,paper_ct,paper_pr\n9,53600,6.0\n10,35100,6.6\n");
+  TableOptions opt;
+  opt.paper = dir.file("paper.csv");
+  const TextTable t = make_table("readings", ResultSet::load({dir.file("r.h5")}), opt);
+  ASSERT_EQ(t.header[0], "reading");
+  ASSERT_EQ(t.rows.size(), 3u);
+  auto col = [&](const std::string& name) { return std::size_t(std::find(t.header.begin(), t.header.end(), name) - t.header.begin()); };
+  // In run order: the defaults (rows 9 and 10), then mirror.
+  const auto& mirror = t.rows[2];
+  EXPECT_EQ(mirror[0], "obstacle_response=mirror");  // what differs from the defaults
+  EXPECT_EQ(t.rows[0][0], "defaults");
+  EXPECT_EQ(mirror[col("row")], "10");
+  EXPECT_EQ(mirror[col("ok")], "2/3");
+  EXPECT_EQ(mirror[col("median CT")], "38000");  // the timeout counts as infinite
+  EXPECT_EQ(mirror[col("paper in [min, max]")], "yes");
+  EXPECT_EQ(mirror[col("open row")], "9");  // the push reading's: an open map has no obstacle to respond to
+  EXPECT_EQ(mirror[col("CT / open")], "0.69");    // 38000 / 55000
+  EXPECT_EQ(mirror[col("paper CT / open")], "0.65");  // 35100 / 53600
+  EXPECT_EQ(mirror[col("ratio / paper's")], "1.06");
+  // Resampling {30000, 38000, inf} and {50000, 60000}: the ratio's median
+  // spans 30000/60000 to inf (two of three resampled runs timing out).
+  EXPECT_EQ(mirror[col("ratio / paper's, 90% interval")], "-");
+  EXPECT_EQ(t.rows[0][col("row")], "9");
+  EXPECT_EQ(t.rows[0][col("open row")], "-");
+  const auto& push = t.rows[1];
+  EXPECT_EQ(push[col("row")], "10");
+  EXPECT_EQ(push[col("paper in [min, max]")], "no");  // 35,100 below our min 40,000
+  EXPECT_EQ(push[col("CT / open")], "0.76");
+  // 40000/60000 to 44000/50000 over 0.655: [1.02, 1.34].
+  EXPECT_EQ(push[col("ratio / paper's, 90% interval")], "[1.02, 1.34]");
 }
 
 // A parameter is printed as the double it is (0.1 + 0.2 is not 0.3), in every

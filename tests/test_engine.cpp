@@ -600,7 +600,7 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
 TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries (also with steps longer than the
   // map, which the lanes fold in full), obstacles (with and without map
-  // zoning, under both boundaries), the scalar-only paths
+  // zoning, under both boundaries, every obstacle response), the scalar-only paths
   // (step doubling, Logistic, Chebyshev), a run outside small-shift mode (dt = 0.5) and
   // an invalid run, mixed in one batch.
   const SweepSpec s = parse_sweep_spec(R"(
@@ -622,6 +622,15 @@ case = [
   { label = "invalid", env = "one_square", start = [8, 8] },
   { label = "points", sampling = "points", f = 4 },
   { label = "full-trig", dt = 0.5 },
+  { label = "obstacles-mirror", obstacle_response = "mirror", env = "five_squares", start = [4.8, 1.6] },
+  { label = "obstacles-bounce", obstacle_response = "reflect", env = "five_squares", start = [4.8, 1.6] },
+  { label = "bounce-fold-mz", obstacle_response = "reflect", boundary = "fold", map_zoning = 1, c = 0.8, env = "one_square", start = [1, 8] },
+  { label = "mz-density-first", map_zoning = 1, c = 0.8, zone_order = "density", env = "five_squares", start = [4.8, 1.6] },
+  { label = "mz-replan-reuse", map_zoning = 1, c = 0.8, transit_replan = "reuse", env = "five_squares", start = [4.8, 1.6] },
+  { label = "mz-logistic-reset", map_zoning = 1, c = 0.8, zone_goal = "midpoint", logistic_reset = "drop", env = "five_squares", start = [4.8, 1.6] },
+  { label = "all-cells", coverage_cells = "all", env = "five_squares", start = [4.8, 1.6] },
+  { label = "mz-all-cells", map_zoning = 1, c = 0.8, coverage_cells = "all", env = "one_square", start = [1, 8] },
+  { label = "mz-transit-distance", map_zoning = 1, c = 0.8, transit_time = "distance", env = "five_squares", start = [4.8, 1.6] },
 ]
 [fixed]
 size = 16

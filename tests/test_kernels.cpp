@@ -19,6 +19,7 @@
 #include "robot_motion.hpp"
 #include "sincos.hpp"
 #include "test_util.hpp"
+#include "transit.hpp"
 
 using namespace chaosweep;
 using chaosweep::test::small_run;
@@ -343,6 +344,33 @@ TEST(RobotMotion, PushesOutOfObstaclesByEq8) {
   EXPECT_DOUBLE_EQ(robot.y(), 5.1);
 }
 
+TEST(RobotMotion, ObstacleResponsesPushMirrorOrBounceAtTheFaceOfLeastPenetration) {
+  RunParams p = small_run(10.0);
+  const Environment env = square_map(10.0, {{4, 4, 6, 6}});
+  p.start_x = 3.0;
+  p.start_y = 5.0;
+  auto after = [&](ObstacleResponse response) {
+    p.obstacle_response = response;
+    CoverageGrid grid(env, 1.0);
+    RobotMotion robot(p, env, grid);
+    robot.move(1.2, 0.1);  // lands at (4.2, 5.1), 0.7 m into the margin of the left face (3.5)
+    const Point hit{robot.x(), robot.y()};
+    robot.move(0.5, 0.0);  // then a step straight on
+    return std::pair{hit, Point{robot.x(), robot.y()}};
+  };
+  const auto [push, push_next] = after(ObstacleResponse::push);
+  EXPECT_DOUBLE_EQ(push.x, 3.5);  // onto the line at fo (Eq. 8 as printed) ...
+  EXPECT_DOUBLE_EQ(push_next.x, 3.5);  // ... and pushed back there by the next step
+  const auto [mirror, mirror_next] = after(ObstacleResponse::mirror);
+  EXPECT_DOUBLE_EQ(mirror.x, 2.8);  // 2 * 3.5 - 4.2: reflected about that line (Eq. 7's form)
+  EXPECT_DOUBLE_EQ(mirror.y, 5.1);
+  EXPECT_DOUBLE_EQ(mirror_next.x, 3.3);  // the heading is unchanged: it walks back towards the face
+  const auto [bounce, bounce_next] = after(ObstacleResponse::reflect);
+  EXPECT_DOUBLE_EQ(bounce.x, 2.8);        // the same point ...
+  EXPECT_DOUBLE_EQ(bounce_next.x, 2.3);   // ... and from then on the motion along x is reversed
+  EXPECT_DOUBLE_EQ(bounce_next.y, 5.1);
+}
+
 // -------------------------------------------------------------- coverage
 
 TEST(Obstacles, NoPositionInACellClearOfObstaclesIsPushed) {
@@ -461,6 +489,32 @@ TEST(Metrics, CellsNeededIsTheSmallestCountReachingDc) {
   EXPECT_EQ(cells_needed(0.9, 169), 153);  // 152.1 -> 153
   EXPECT_EQ(cells_needed(1.0, 7), 7);
   EXPECT_EQ(cells_needed(0.5, 16), 8);
+}
+
+TEST(Metrics, CoverageOfAllCellsCountsTheObstacleCellsAsCovered) {
+  // 10 x 10 cells, a 4 x 4 obstacle: 84 free, 16 blocked.
+  const Environment env = square_map(10.0, {{3, 3, 7, 7}});
+  const CoverageGrid g(env, 1.0);
+  ASSERT_EQ(g.free_cells(), 84);
+  ASSERT_EQ(g.blocked_cells(), 16);
+  RunParams p = small_run(10.0);
+  p.dc = 0.9;
+  EXPECT_EQ(cells_needed(p, g), 76);  // 75.6 of 84
+  EXPECT_EQ(cells_total(p, g), 84);
+  EXPECT_DOUBLE_EQ(coverage_rate(p, g, 42), 0.5);
+  p.coverage_cells = CoverageCells::all_cells;
+  EXPECT_EQ(cells_needed(p, g), 90 - 16);  // 90 of 100 cells, 16 of them the obstacle's
+  EXPECT_EQ(cells_total(p, g), 100);
+  EXPECT_DOUBLE_EQ(coverage_rate(p, g, 42), 0.58);
+  p.dc = 0.1;
+  EXPECT_EQ(cells_needed(p, g), 0);  // the obstacle alone is 16%
+  // A run: it stops at 74 visited free cells, reporting tc over all cells.
+  p.dc = 0.9;
+  p.start_x = p.start_y = 1.0;
+  const RunResult r = run_planner(p, env);
+  ASSERT_EQ(r.status, Status::ok);
+  EXPECT_EQ(r.visited_cells, 74);
+  EXPECT_DOUBLE_EQ(r.final_coverage, 0.9);
 }
 
 TEST(Planner, ReportsCoverageTOptAndPrOnATinyMap) {

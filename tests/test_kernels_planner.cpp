@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
 
 #include "control.hpp"
 #include "coverage_grid.hpp"
@@ -62,6 +63,22 @@ RunParams mechanism_run(double side) {
   return p;
 }
 
+// MapZoning on a 20 m map of 2 x 2 zones with paper-literal goals (the
+// midpoints (5, 5), (15, 5), (5, 15), (15, 15)), th = 3, the robot at (1, 1).
+RunParams midpoint_zoning_run() {
+  RunParams p = mechanism_run(20.0);
+  p.th = 3;
+  p.zones_x = p.zones_y = 2;
+  p.zone_goal = ZoneGoal::midpoint;
+  p.start_x = p.start_y = 1.0;
+  return p;
+}
+
+// Obstacles over every one of those midpoints.
+Environment blocked_midpoints() {
+  return square_map(20.0, {{3, 3, 7, 7}, {13, 3, 17, 7}, {3, 13, 7, 17}, {13, 13, 17, 17}});
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------ zones
@@ -88,6 +105,27 @@ TEST(ZoneOrder, WithObstaclesNearestFirstTiesByDensity) {
   // and (2,6)), zone 3 farthest whatever its density.
   const auto order = zone_order(zones.snapshot(g), 0, 2.0, 2.0, true);
   EXPECT_EQ(indices(order), (std::vector<int>{2, 1, 3}));
+}
+
+TEST(ZoneOrder, TheParameterPicksTheRankingOnEveryMap) {
+  // auto: by the map (Section 3.2); density (Section 3.2.1) and distance
+  // (Algorithm 2, lines 5-9) whatever the map.
+  EXPECT_FALSE(zones_distance_first(ZoneOrder::automatic, false));
+  EXPECT_TRUE(zones_distance_first(ZoneOrder::automatic, true));
+  for (bool obstacles : {false, true}) {
+    EXPECT_FALSE(zones_distance_first(ZoneOrder::density, obstacles));
+    EXPECT_TRUE(zones_distance_first(ZoneOrder::distance, obstacles));
+  }
+  const Environment env = square_map(8.0);
+  CoverageGrid g(env, 1.0);
+  const Zones zones(env, g, 2, 2, true, 0.5);
+  visit(g, 1, 0, 8);  // the two zones next to the robot's, half covered
+  visit(g, 0, 1, 8);
+  const auto z = zones.snapshot(g);
+  EXPECT_EQ(indices(zone_order(z, 0, 1.0, 1.0, zones_distance_first(ZoneOrder::density, false))),
+            (std::vector<int>{3, 1, 2}));  // the empty far zone first
+  EXPECT_EQ(indices(zone_order(z, 0, 1.0, 1.0, zones_distance_first(ZoneOrder::distance, false))),
+            (std::vector<int>{1, 2, 3}));  // the near ones first
 }
 
 TEST(ZoneOrder, ZonesWithoutFreeCellsAreNoCandidates) {
@@ -156,6 +194,21 @@ TEST(Transit, ReachesAReachableGoal) {
   EXPECT_NEAR(run.time(), r.transit_points * p.dt_c, 1e-9);  // each mapped point costs dt_c
 }
 
+TEST(Transit, ByDistanceTakesThePathLengthAtSpeedV) {
+  RunParams p = mechanism_run(20.0);
+  p.transit_time = TransitTime::distance;
+  p.v = 2.0;
+  Harness h(p, square_map(20.0));
+  ASSERT_TRUE(h.run->transit_to({15.0, 12.0}));
+  double length = 0;
+  for (std::size_t i = 1; i < h.trace.points.size(); ++i)
+    length += std::hypot(h.trace.points[i].x - h.trace.points[i - 1].x, h.trace.points[i].y - h.trace.points[i - 1].y);
+  EXPECT_NEAR(h.run->time(), length / p.v, 1e-9);
+  // Eq. 6's correction stretches the Logistic steps of v dt_c: by points the
+  // transit would run faster than v.
+  EXPECT_GT(h.run->time(), h.r.transit_points * p.dt_c);
+}
+
 TEST(Transit, IsRebuiltAtObstaclesAndGivesUpAfterThAttempts) {
   RunParams p = mechanism_run(20.0);
   p.th = 4;
@@ -185,17 +238,34 @@ TEST(Transit, AroundAnObstacleIsRebuiltFromThePushedOutPointAndArrives) {
   EXPECT_TRUE(h.trace_avoids_obstacles());
 }
 
-TEST(MapZoning, DropsUnreachableZonesAndRaisesThWhenAllFail) {
+TEST(Transit, ReusingTheRemainingLogisticPointsKeepsThePathsLength) {
+  // The Transit test above, with Algorithm 4's re-plan as printed: after a
+  // hit at point i the remaining m - i + 1 Logistic points are mapped anew,
+  // so the transit walks exactly the m - 1 points of its first plan
+  // (m = floor(16 m / 0.1 m) + 1), however often it was rebuilt.
   RunParams p = mechanism_run(20.0);
-  p.th = 3;
+  p.th = 50;
+  p.start_x = 2.0;
+  p.start_y = 10.5;
+  const Environment env = square_map(20.0, {{9.5, 9.5, 10.5, 10.5}});
+  for (TransitReplan replan : {TransitReplan::reuse, TransitReplan::fresh}) {
+    p.transit_replan = replan;
+    Harness h(p, env);
+    ASSERT_TRUE(h.run->transit_to({18.0, 10.5}));
+    EXPECT_GE(h.r.transit_attempts, 1);
+    EXPECT_EQ(h.run->position().x, 18.0);
+    EXPECT_TRUE(h.trace_avoids_obstacles());
+    if (replan == TransitReplan::reuse) EXPECT_EQ(h.r.transit_points, 160);
+    else EXPECT_GT(h.r.transit_points, 160);  // each rebuild plans the rest anew
+  }
+}
+
+TEST(MapZoning, DropsUnreachableZonesAndRaisesThWhenAllFail) {
+  RunParams p = midpoint_zoning_run();
   p.dnh = 5;
-  p.zones_x = p.zones_y = 2;
-  p.zone_goal = ZoneGoal::midpoint;  // paper-literal: midpoints inside obstacles
-  p.start_x = p.start_y = 1.0;
   // Obstacles over every zone midpoint: each transit fails after th attempts
   // (the robot's own zone, which changes as it moves, is never a candidate).
-  const Environment env = square_map(20.0, {{3, 3, 7, 7}, {13, 3, 17, 7}, {3, 13, 7, 17}, {13, 13, 17, 17}});
-  Harness h(p, env);
+  Harness h(p, blocked_midpoints());
   PlannerRun& run = *h.run;
   RunResult& r = h.r;
   run.map_zoning();
@@ -205,12 +275,20 @@ TEST(MapZoning, DropsUnreachableZonesAndRaisesThWhenAllFail) {
   EXPECT_EQ(run.th(), 3 + 5);                          // every zone failed: th += dnh
 }
 
+TEST(MapZoning, LogisticResetDropRestartsTheLogisticMapWhenAZoneIsDropped) {
+  RunParams p = midpoint_zoning_run();
+  for (LogisticReset reset : {LogisticReset::never, LogisticReset::drop}) {
+    p.logistic_reset = reset;
+    Harness h(p, blocked_midpoints());
+    h.run->map_zoning();  // every zone is dropped, the last one after its transit
+    ASSERT_GE(h.r.zones_dropped, 3);
+    if (reset == LogisticReset::drop) EXPECT_EQ(h.run->logistic_state(), p.logistic_x0);
+    else EXPECT_NE(h.run->logistic_state(), p.logistic_x0);
+  }
+}
+
 TEST(MapZoning, AFailedZoneIsDroppedAndTheNextOneTried) {
-  RunParams p = mechanism_run(20.0);
-  p.th = 3;
-  p.zones_x = p.zones_y = 2;
-  p.zone_goal = ZoneGoal::midpoint;
-  p.start_x = p.start_y = 1.0;
+  const RunParams p = midpoint_zoning_run();
   // Only zone 1's midpoint (15, 5), the nearest candidate, is blocked.
   const Environment env = square_map(20.0, {{13, 3, 17, 7}});
   Harness h(p, env);
@@ -286,19 +364,21 @@ TEST(LogisticPlanner, AFixedPointEndsTheRunAsDiverged) {
 }
 
 // A run never ends a step inside an obstacle or outside the map, for every
-// technique set, on the Table 1 layouts (scaled to 50 m).
+// technique set and obstacle response, on the Table 1 layouts (scaled to 50 m).
 TEST(Planner, RobotNeverEndsAStepInsideAnObstacleOrOutsideTheMap) {
   const std::vector<Rect> five = {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44},
                                   {23.5, 23.5, 26.5, 26.5}};
   const std::vector<Rect> one = {{15, 15, 35, 35}};
   for (const auto& obstacles : {five, one})
-    for (int variant = 0; variant < 5; ++variant) {
+    for (int variant = 0; variant < 7; ++variant) {
       RunParams p = small_run(50.0);
+      if (variant == 5) p.obstacle_response = ObstacleResponse::mirror;
+      if (variant == 6) p.obstacle_response = ObstacleResponse::reflect, p.map_zoning = 1;
       p.start_x = 15;
       p.start_y = 3;
       p.max_time = 4000;
       p.index_switching = variant == 1 || variant == 3;
-      p.map_zoning = variant >= 2;
+      p.map_zoning = p.map_zoning || (variant >= 2 && variant <= 4);
       p.c = 0.8;
       p.f = variant == 4 ? 3.0 : 1.0;
       const Environment env = square_map(50.0, obstacles);
@@ -325,4 +405,33 @@ TEST(ChaoticSpread, IcJitterGivesDifferentRunsForDifferentSeeds) {
   const Vec3<double> u0 = initial_state(p);
   EXPECT_NEAR(u0.y, 1.0, 1e-6);
   EXPECT_NE(u0.y, 1.0);
+}
+
+TEST(ChaoticSpread, LogisticJitterSamplesTheLogisticPlannerAndLeavesIcAlone) {
+  RunParams p = small_run(20.0);
+  p.planner = Planner::logistic;
+  p.dc = 0.6;
+  p.ic_jitter = 1e-6;  // no Arnold state here: only the Logistic jitter can spread these runs
+  std::set<double> times;
+  for (std::int64_t seed = 0; seed < 4; ++seed) {
+    p.seed = seed;
+    times.insert(run_planner(p, square_map(20.0)).coverage_time);
+  }
+  EXPECT_EQ(times.size(), 1u);
+  p.logistic_jitter = 1e-6;
+  times.clear();
+  for (std::int64_t seed = 0; seed < 4; ++seed) {
+    p.seed = seed;
+    const RunResult r = run_planner(p, square_map(20.0));
+    EXPECT_EQ(r.status, Status::ok);
+    times.insert(r.coverage_time);
+    EXPECT_NEAR(initial_logistic(p).x, p.logistic_x0, 1e-6);
+  }
+  EXPECT_EQ(times.size(), 4u);
+  p.seed = 3;
+  const Vec3<double> u = initial_state(p);
+  p.logistic_jitter = 0;
+  const Vec3<double> u_without = initial_state(p);
+  EXPECT_EQ(u.x, u_without.x);  // the Arnold draws do not move
+  EXPECT_EQ(u.z, u_without.z);
 }
