@@ -1,4 +1,4 @@
-#include "figures.hpp"
+#include "analysis/figures.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,17 +8,17 @@
 #include <set>
 #include <sstream>
 
-#include "grouping.hpp"
-#include "named_list.hpp"
-#include "chebyshev_analysis.hpp"
-#include "chebyshev_map.hpp"
-#include "param_table.hpp"
-#include "rect_decomposition.hpp"
-#include "seed002.hpp"
-#include "replay.hpp"
-#include "tables.hpp"
-#include "text_table.hpp"
-#include "zones.hpp"
+#include "analysis/grouping.hpp"
+#include "analysis/named_list.hpp"
+#include "kernels/planners/chebyshev/chebyshev_analysis.hpp"
+#include "kernels/systems/chebyshev_map.hpp"
+#include "kernels/core/param_table.hpp"
+#include "kernels/planners/chebyshev/rect_decomposition.hpp"
+#include "analysis/papers/bouncing_paper.hpp"
+#include "analysis/replay.hpp"
+#include "analysis/tables.hpp"
+#include "analysis/text_table.hpp"
+#include "kernels/planners/arnold/zones.hpp"
 
 namespace chaosweep {
 

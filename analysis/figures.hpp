@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "plot.hpp"
-#include "result_set.hpp"
+#include "analysis/plot.hpp"
+#include "analysis/result_set.hpp"
 
 namespace chaosweep {
 

@@ -1,4 +1,4 @@
-#include "grouping.hpp"
+#include "analysis/grouping.hpp"
 
 #include <algorithm>
 #include <cmath>

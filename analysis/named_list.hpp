@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "result_set.hpp"
+#include "analysis/result_set.hpp"
 
 namespace chaosweep {
 

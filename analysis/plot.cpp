@@ -1,4 +1,4 @@
-#include "plot.hpp"
+#include "analysis/plot.hpp"
 
 #include <mgl2/mgl.h>
 
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "result_set.hpp"
+#include "analysis/result_set.hpp"
 
 namespace chaosweep {
 

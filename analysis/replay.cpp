@@ -1,10 +1,10 @@
-#include "replay.hpp"
+#include "analysis/replay.hpp"
 
 #include <cmath>
 
-#include "param_table.hpp"
-#include "planner.hpp"
-#include "stored_run.hpp"
+#include "kernels/core/param_table.hpp"
+#include "kernels/planners/planner.hpp"
+#include "engine/store/stored_run.hpp"
 
 namespace chaosweep {
 

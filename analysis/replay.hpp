@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "coverage_grid.hpp"
-#include "result_set.hpp"
-#include "run_tuple.hpp"
-#include "trace.hpp"
+#include "kernels/core/coverage_grid.hpp"
+#include "analysis/result_set.hpp"
+#include "engine/spec/run_tuple.hpp"
+#include "kernels/core/trace.hpp"
 
 namespace chaosweep {
 

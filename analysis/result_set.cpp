@@ -1,4 +1,4 @@
-#include "result_set.hpp"
+#include "analysis/result_set.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <set>
 #include <tuple>
 
-#include "h5_store.hpp"
-#include "param_table.hpp"
+#include "engine/store/h5_store.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 

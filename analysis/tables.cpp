@@ -1,4 +1,4 @@
-#include "tables.hpp"
+#include "analysis/tables.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,13 +8,13 @@
 #include <set>
 #include <sstream>
 
-#include "grouping.hpp"
-#include "named_list.hpp"
-#include "param_table.hpp"
-#include "seed001.hpp"
-#include "seed002.hpp"
-#include "seed003.hpp"
-#include "table1_readings.hpp"
+#include "analysis/grouping.hpp"
+#include "analysis/named_list.hpp"
+#include "kernels/core/param_table.hpp"
+#include "analysis/papers/chebyshev_paper.hpp"
+#include "analysis/papers/bouncing_paper.hpp"
+#include "analysis/papers/contraction_paper.hpp"
+#include "analysis/papers/table1_readings.hpp"
 
 namespace chaosweep {
 

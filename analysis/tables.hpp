@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "result_set.hpp"
-#include "text_table.hpp"
+#include "analysis/result_set.hpp"
+#include "analysis/text_table.hpp"
 
 namespace chaosweep {
 

@@ -1,12 +1,12 @@
-#include "text_table.hpp"
+#include "analysis/text_table.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-#include "param_table.hpp"
-#include "result_set.hpp"
+#include "kernels/core/param_table.hpp"
+#include "analysis/result_set.hpp"
 
 namespace chaosweep {
 

@@ -4,12 +4,12 @@
 
 #include <cmath>
 
-#include "arnold_flow.hpp"
-#include "coverage_grid.hpp"
-#include "environment.hpp"
-#include "lane_arrays.hpp"
-#include "planner.hpp"
-#include "sincos.hpp"
+#include "kernels/systems/arnold_flow.hpp"
+#include "kernels/core/coverage_grid.hpp"
+#include "kernels/core/environment.hpp"
+#include "kernels/lanes/lane_arrays.hpp"
+#include "kernels/planners/planner.hpp"
+#include "kernels/math/sincos.hpp"
 
 using namespace chaosweep;
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "environment_loader.hpp"
+#include "engine/spec/environment_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -20,16 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "h5_compare.hpp"
-#include "h5_merge.hpp"
-#include "h5_store.hpp"
-#include "result_set.hpp"
-
-namespace chaosweep {
-// merge stamps merged_at with the time; the clock is not under test (and its
-// home, cli_common.cpp, would bring the whole command line along).
-std::string utc_now() { return "2000-01-01T00:00:00Z"; }
-}  // namespace chaosweep
+#include "engine/store/h5_compare.hpp"
+#include "engine/store/h5_merge.hpp"
+#include "engine/store/h5_store.hpp"
+#include "analysis/result_set.hpp"
 
 namespace {
 

@@ -27,7 +27,7 @@ for s in "$@"; do
   else srcs+=("$root/$s"); fi
 done
 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-  -I"$root/kernels" -I"$root/engine" \
+  -I"$root" \
   "$here/fuzz_$name.cpp" "${srcs[@]}" ${flags[@]+"${flags[@]}"} -o "$work/fuzz_$name"
 mkdir -p "$work/corpus"
 cp "$here/corpus_$name"/* "$work/corpus/" 2>/dev/null || true

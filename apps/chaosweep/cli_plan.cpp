@@ -1,0 +1,140 @@
+// `chaosweep plan SPEC.toml`: what a sweep will do, before doing it.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "apps/chaosweep/cli_common.hpp"
+#include "apps/chaosweep/cli_subcommands.hpp"
+#include "kernels/lanes/lane_driver.hpp"
+#include "kernels/core/param_table.hpp"
+#include "engine/run/simd_choice.hpp"
+#include "engine/run/sweep_runner.hpp"
+#include "engine/spec/work_bound.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+std::string preview(const Axis& axis) {
+  if (axis.kind == "repeat") return "each run's seed = splitmix64(master seed, run_id)";
+  std::string s;
+  const std::size_t n = axis.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (n > 8 && i == 3) {
+      s += ", ...";
+      i = n - 3;
+    }
+    std::string v;
+    axis.visit(i, [&](const std::string& key, const SpecValue& value) {
+      if (!v.empty()) v += ' ';
+      if (axis.kind != "axis") v.append(key).append("=");
+      v += to_text(value);
+    });
+    if (!s.empty()) s += ", ";
+    if (axis.kind == "axis") s += v;
+    else s.append("{").append(v).append("}");
+  }
+  return s;
+}
+
+// "  (7 x 3 x 8)": the sizes of a product's axes ("" when it has none).
+std::string shape_of(const std::vector<Axis>& own, const std::vector<Axis>& shared) {
+  std::string shape;
+  for (const auto* axes : {&own, &shared})
+    for (const Axis& a : *axes) shape += (shape.empty() ? "" : " x ") + std::to_string(a.size());
+  return shape.empty() ? "" : "  (" + shape + ")";
+}
+
+void print_axes(const std::vector<Axis>& axes, const std::string& indent) {
+  for (const Axis& a : axes) std::cout << indent << a.name() << ": " << a.size() << " values: " << preview(a) << "\n";
+}
+
+// ns per lane-step of this machine's kernels on (up to) 16 of the spec's own
+// runs, each cut to 2000 steps.
+double calibrate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget target) {
+  std::vector<RunTuple> tuples;
+  const std::int64_t n = std::min<std::int64_t>(16, spec.size());
+  for (std::int64_t k = 0; k < n; ++k) {
+    RunTuple t = resolve_run(k * spec.size() / n, spec.run(k * spec.size() / n), cache);
+    t.params.max_time = 2000 * t.params.f * t.params.dt;
+    tuples.push_back(t);
+  }
+  std::vector<BatchItem> items;
+  for (const RunTuple& t : tuples) items.push_back({&t.params, t.env.get()});
+  std::vector<RunResult> results(items.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  run_batch(items.data(), results.data(), items.size(), target);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double steps = 0;
+  for (const RunResult& r : results) steps += double(r.steps + r.transit_points);
+  return steps > 0 ? 1e9 * s / steps : NAN;
+}
+
+}  // namespace
+
+void add_plan_command(CLI::App& app, std::function<int()>& action) {
+  auto* cmd = app.add_subcommand("plan", "Show what a sweep spec expands to and bound its work, without running it");
+  auto spec_path = std::make_shared<std::string>();
+  cmd->add_option("spec", *spec_path, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
+  cmd->callback([spec_path, &action] {
+    action = [spec_path]() -> int {
+      SweepSpec spec;
+      EnvironmentCache cache;
+      SimdTarget target;
+      WorkBound work;
+      try {
+        target = selected_simd_target();
+        spec = load_sweep_spec(*spec_path);
+        preload_environments(spec, cache);  // every map, named where the spec sets it, as sweep does
+        work = bound_work(spec, cache);
+      } catch (const std::exception& e) {
+        std::cerr << "chaosweep plan: " << e.what() << "\n";
+        return exit_bad_input;
+      }
+      std::cout << "sweep '" << spec.name << "'" << (spec.description.empty() ? "" : ": " + spec.description) << "\n";
+      if (spec.parts.empty()) {
+        std::cout << "runs        " << spec.size() << shape_of(spec.axes, {}) << "\n";
+        std::cout << "axes        (first varies slowest)\n";
+        print_axes(spec.axes, "  ");
+      } else {
+        std::cout << "runs        " << spec.size() << " in " << spec.parts.size() << " parts, one after the other\n";
+        std::cout << "parts       (each: its fixed settings, then its axes, first slowest"
+                  << (spec.axes.empty() ? "" : ", then the shared axes") << ")\n";
+        for (std::size_t k = 0; k < spec.parts.size(); ++k) {
+          const SpecPart& part = spec.parts[k];
+          const std::int64_t first = spec.part_offset(k), n = spec.part_size(k);
+          std::cout << "  part \"" << part.name << "\": " << n << " runs" << shape_of(part.axes, spec.axes)
+                    << ", run_id " << first << "-" << first + n - 1 << "\n";
+          if (!part.fixed.empty()) {
+            std::string f;
+            for (const auto& [key, value] : part.fixed) f += (f.empty() ? "" : " ") + key + "=" + to_text(value);
+            std::cout << "    fixed: " << f << "\n";
+          }
+          print_axes(part.axes, "    ");
+        }
+        if (!spec.axes.empty()) {
+          std::cout << "axes        shared by every part, after its own (first varies slowest)\n";
+          print_axes(spec.axes, "  ");
+        }
+      }
+      const RunSpec first = spec.run(0);
+      std::cout << "first run   env " << first.env << ", " << format_number(first.params.size_x) << " x "
+                << format_number(first.params.size_y) << " m, sr " << format_number(first.params.sr) << " m, planner "
+                << to_string(first.params.planner) << ", variant " << variant_name(first.params) << "\n";
+      char buf[256];
+      const double ns = calibrate(spec, cache, target);
+      std::snprintf(buf, sizeof buf,
+                    "work        at most %s%.3g integration steps (every run to its time budget; most end sooner)\n"
+                    "            %.1f ns per lane-step measured here (%s kernels) -> at most %.3g core-hours\n",
+                    work.sampled ? "about " : "", work.steps, ns, to_string(target), work.steps * ns * 1e-9 / 3600);
+      std::cout << buf;
+      if (work.sampled)
+        std::cout << "            (estimated from " << work.evaluated
+                  << " runs drawn at random: the axes that set time budgets have too many combinations to walk)\n";
+      return exit_ok;
+    };
+  });
+}
+
+}  // namespace chaosweep

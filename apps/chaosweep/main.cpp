@@ -1,0 +1,50 @@
+// chaosweep: batch experiments for chaotic coverage path planners.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "apps/chaosweep/cli_common.hpp"
+#include "apps/chaosweep/cli_subcommands.hpp"
+#include "engine/run/simd_choice.hpp"
+#include "engine/store/version.hpp"
+
+int main(int argc, char** argv) {
+  using namespace chaosweep;
+  CLI::App app{"chaosweep: high-throughput sweeps of chaotic robot coverage planners"};
+  app.require_subcommand(0, 1);
+  bool version = false;
+  app.add_flag("--version", version, "print version, git commit and exit");
+  std::function<int()> action;
+  add_run_command(app, action);
+  add_plan_command(app, action);
+  add_sweep_command(app, action);
+  add_merge_command(app, action);
+  add_compare_command(app, action);
+  add_slurm_commands(app, action);
+  add_bench_command(app, action);
+  add_table_command(app, action);
+  add_figure_command(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? exit_ok : exit_bad_input;
+  }
+  if (version) {
+    std::cout << "chaosweep " << engine_version() << " (git " << git_commit() << (git_dirty() ? ", dirty" : "")
+              << ")\n";
+    try {
+      const SimdTarget t = selected_simd_target();
+      std::cout << "kernels: " << to_string(t) << " (" << lane_width(t) << " doubles per vector; best on this CPU: "
+                << to_string(best_simd_target()) << ")\n";
+    } catch (const std::exception& e) {
+      std::cerr << "chaosweep: " << e.what() << "\n";
+      return exit_bad_input;
+    }
+    return exit_ok;
+  }
+  if (!action) {
+    std::cout << app.help();
+    return exit_bad_input;
+  }
+  return action();
+}

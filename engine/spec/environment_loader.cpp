@@ -1,0 +1,300 @@
+#include "engine/spec/environment_loader.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+#include <cmath>
+#include <optional>
+#include "engine/spec/toml.hpp"
+
+#include "kernels/core/clutter.hpp"
+#include "engine/spec/input_file.hpp"
+#include "engine/spec/run_hash.hpp"
+#include "engine/spec/embedded_files.hpp"
+
+namespace chaosweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A number for messages ("0.3", "12", "inf", "nan"); local so that the fuzz
+// target builds from this file's few dependencies.
+std::string format_number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) {
+  throw std::runtime_error("environment " + file + ": " + what);
+}
+
+double number(const toml::node& n, const std::string& file, const std::string& key) {
+  if (auto v = n.value<double>()) return *v;
+  fail(file, "'" + key + "' must be a number");
+}
+
+// A number that must be finite (TOML has nan and inf literals).
+double finite_number(const toml::node& n, const std::string& file, const std::string& key) {
+  const double v = number(n, file, key);
+  if (!std::isfinite(v)) fail(file, "'" + key + "' = " + format_number(v) + " must be a finite number");
+  return v;
+}
+
+std::pair<double, double> pair_of(const toml::node& n, const std::string& file, const std::string& key) {
+  if (n.is_number()) {
+    const double v = finite_number(n, file, key);
+    return {v, v};
+  }
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 2) fail(file, "'" + key + "' must be a number or [x, y]");
+  return {finite_number(*a->get(0), file, key + "[0]"), finite_number(*a->get(1), file, key + "[1]")};
+}
+
+// "[0, 10] x [0, 10] m": the map's extent, for messages.
+std::string map_bounds(const Environment& env) {
+  return "[0, " + format_number(env.lx) + "] x [0, " + format_number(env.ly) + "] m";
+}
+
+Environment parse_text(const std::string& text, const std::string& path, double size_x, double size_y,
+                       std::optional<std::uint64_t> clutter_seed) {
+  toml::table t;
+  try {
+    check_toml_text(text);
+    t = toml::parse(text, path);
+    check_toml_integers(t);
+  } catch (const TomlInputError& e) {
+    fail(path, e.what());
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << e.description() << " at line " << e.source().begin.line;
+    fail(path, os.str());
+  }
+  Environment env;
+  env.name = fs::path(path).stem().string();
+  bool relative = true;
+  for (auto&& [k, node] : t) {
+    const std::string key(k.str());
+    if (key == "name") {
+      if (!node.is_string()) fail(path, "'name' must be a string");
+      env.name = *node.value<std::string>();
+    } else if (key == "units") {
+      const auto u = node.value<std::string>();
+      if (!u || (*u != "relative" && *u != "m"))
+        fail(path, "'units' must be \"relative\" (fractions of the map side) or \"m\"");
+      relative = *u == "relative";
+    } else if (key != "size" && key != "start" && key != "start_units" && key != "obstacles" &&
+               key != "description" && key != "clutter") {
+      fail(path, "unknown key '" + key +
+                     "' (allowed: name, description, units, size, start, start_units, obstacles, "
+                     "clutter)");
+    }
+  }
+  if (const toml::node* s = t.get("size")) {
+    std::tie(env.lx, env.ly) = pair_of(*s, path, "size");
+    if (!(env.lx > 0 && env.ly > 0))
+      fail(path, "'size' = " + format_number(env.lx) + " x " + format_number(env.ly) + " must be positive");
+  } else if (!relative) {
+    fail(path, "'size' is required when units = \"m\"");
+  } else {
+    env.lx = size_x;
+    env.ly = size_y;
+  }
+  const double sx = relative ? env.lx : 1.0, sy = relative ? env.ly : 1.0;
+
+  if (const toml::node* s = t.get("start")) {
+    auto [x, y] = pair_of(*s, path, "start");
+    bool start_m = !relative;
+    if (const toml::node* su = t.get("start_units")) {
+      const auto u = su->value<std::string>();
+      if (!u || (*u != "relative" && *u != "m")) fail(path, "'start_units' must be \"relative\" or \"m\"");
+      start_m = *u == "m";
+    }
+    env.start = start_m ? std::pair{x, y} : std::pair{x * env.lx, y * env.ly};
+  }
+
+  if (const toml::node* o = t.get("obstacles")) {
+    const toml::array* arr = o->as_array();
+    if (!arr) fail(path, "'obstacles' must be an array of {x, y, w, h} tables");
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const std::string where = "obstacles[" + std::to_string(i) + "]";
+      const toml::table* r = arr->get(i)->as_table();
+      if (!r) fail(path, where + " must be a table {x, y, w, h}");
+      double v[4];
+      const char* names[4] = {"x", "y", "w", "h"};
+      for (int j = 0; j < 4; ++j) {
+        const toml::node* n = r->get(names[j]);
+        if (!n) fail(path, where + " lacks '" + names[j] + "'");
+        v[j] = finite_number(*n, path, where + "." + names[j]);
+      }
+      for (auto&& [k, node] : *r) {
+        (void)node;
+        const std::string key(k.str());
+        if (key != "x" && key != "y" && key != "w" && key != "h")
+          fail(path, where + " has unknown key '" + key + "' (allowed: x, y, w, h)");
+      }
+      if (!(v[2] > 0 && v[3] > 0)) fail(path, where + ": w and h must be positive");
+      const Rect rect{v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy};
+      // Every obstacle lies within the map (touching its edge is fine; a
+      // relative 0.7 + 0.3 may round above 1, hence the tolerance). Overlapping
+      // obstacles are fine: the map is their union (docs/inputs.md).
+      const double tol_x = 1e-9 * env.lx, tol_y = 1e-9 * env.ly;
+      if (!(rect.x0 >= -tol_x && rect.y0 >= -tol_y && rect.x1 <= env.lx + tol_x && rect.y1 <= env.ly + tol_y)) {
+        const bool wholly = rect.x0 >= env.lx || rect.y0 >= env.ly || rect.x1 <= 0 || rect.y1 <= 0;
+        fail(path, where + " spans [" + format_number(rect.x0) + ", " + format_number(rect.x1) + "] x [" +
+                       format_number(rect.y0) + ", " + format_number(rect.y1) + "] m: " +
+                       (wholly ? "it lies outside" : "it reaches outside") + " the map " + map_bounds(env) +
+                       (relative ? " (units = \"relative\": need 0 <= x, x + w <= 1, 0 <= y, y + h <= 1)" : ""));
+      }
+      env.obstacles.push_back(rect);
+    }
+  }
+  if (const toml::node* c = t.get("clutter")) {
+    const toml::table* ct = c->as_table();
+    if (!ct) fail(path, "'clutter' must be a table {seed, occupancy, min_side, max_side, gap}");
+    ClutterSpec spec;
+    const double unit = relative ? std::min(env.lx, env.ly) : 1.0;
+    spec.min_side = 0.03 * (relative ? unit : 50.0);
+    spec.max_side = 0.08 * (relative ? unit : 50.0);
+    spec.gap = 0.02 * (relative ? unit : 50.0);
+    for (auto&& [k, node] : *ct) {
+      const std::string key(k.str()), where = "clutter." + key;
+      const double v = number(node, path, where);
+      if (key == "seed") {
+        if (!(v >= 0 && v == std::floor(v))) fail(path, where + " must be a whole number >= 0");
+        spec.seed = std::uint64_t(v);
+      } else if (key == "occupancy") {
+        if (!(v >= 0 && v <= 0.6)) fail(path, where + " must be in [0, 0.6]");
+        spec.occupancy = v;
+      } else if (key == "min_side" || key == "max_side" || key == "gap") {
+        if (!(v >= 0)) fail(path, where + " must be >= 0");
+        (key == "min_side" ? spec.min_side : key == "max_side" ? spec.max_side : spec.gap) = v * unit;
+      } else {
+        fail(path, "unknown key '" + where + "' (allowed: seed, occupancy, min_side, max_side, gap)");
+      }
+    }
+    if (!(spec.min_side > 0 && spec.max_side >= spec.min_side))
+      fail(path, "clutter needs 0 < min_side <= max_side");
+    if (!(spec.max_side + 2 * spec.gap < std::min(env.lx, env.ly)))
+      fail(path, "clutter.max_side + 2 gap = " + format_number(spec.max_side + 2 * spec.gap) +
+                     " m does not fit in the map (" + format_number(env.lx) + " x " + format_number(env.ly) + " m)");
+    // Squares so small that the occupancy needs more of them than the
+    // generator tries are a typo (1e-9 for 0.1), not a map.
+    const double most = spec.occupancy * env.lx * env.ly / (spec.min_side * spec.min_side);
+    if (most > max_clutter_attempts)
+      fail(path, "clutter.occupancy = " + format_number(spec.occupancy) + " with squares of min_side = " +
+                     format_number(spec.min_side) + " m takes up to " + format_number(most) + " squares (more than " +
+                     std::to_string(max_clutter_attempts) +
+                     ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
+    if (clutter_seed) spec.seed = *clutter_seed;
+    const auto start = env.start.value_or(std::pair{0.5, 0.5});
+    for (const Rect& r : generate_clutter(env.lx, env.ly, spec, start.first, start.second))
+      env.obstacles.push_back(r);
+    env.name += ":" + std::to_string(spec.seed);
+  } else if (clutter_seed) {
+    fail(path, "':SEED' is only for environments with a 'clutter' table");
+  }
+  env.index_obstacles();
+  // The file's own start must be a place a run can start from (a run's own
+  // start, which wins over it, is checked when the run starts).
+  if (env.start) {
+    const auto [x, y] = *env.start;
+    const std::string at = "'start' = (" + format_number(x) + ", " + format_number(y) + ") m";
+    if (x < 0 || x > env.lx || y < 0 || y > env.ly) fail(path, at + " is outside the map " + map_bounds(env));
+    if (const int k = env.obstacle_at(x, y); k >= 0)
+      fail(path, at + " lies inside obstacles[" + std::to_string(k) + "]");
+  }
+  return env;
+}
+
+Environment parse_file(const std::string& path, double size_x, double size_y,
+                       std::optional<std::uint64_t> clutter_seed, InputRecord* source) {
+  std::string text;
+  try {
+    text = read_input_file(path, "the environment file");
+  } catch (const InputFileError& e) {
+    throw std::runtime_error(std::string("environment ") + e.what());
+  }
+  if (source) *source = {path, fnv1a64(text)};
+  return parse_text(text, path, size_x, size_y, clutter_seed);
+}
+
+}  // namespace
+
+Environment parse_environment(const std::string& text, const std::string& source_name, double size_x,
+                              double size_y) {
+  return parse_text(text, source_name, size_x, size_y, std::nullopt);
+}
+
+std::string find_environment_file(const std::string& name) {
+  if (const char* p = std::getenv("CHAOSWEEP_ENV_PATH")) {
+    std::stringstream ss(p);
+    for (std::string d; std::getline(ss, d, ':');) {
+      if (d.empty()) continue;
+      const fs::path candidate = fs::path(d) / (name + ".toml");
+      if (fs::exists(candidate)) return candidate.string();
+    }
+  }
+  return {};
+}
+
+std::optional<std::string_view> builtin_environment(const std::string& name) {
+  return embedded_file("experiments/envs/" + name + ".toml");
+}
+
+Environment load_environment(const std::string& spec, double size_x, double size_y, InputRecord* source) {
+  if (spec == "empty" || spec.empty()) {
+    Environment env;
+    env.name = "empty";
+    env.lx = size_x;
+    env.ly = size_y;
+    return env;
+  }
+  // "NAME:SEED" picks the clutter seed of a generated environment.
+  std::string base = spec;
+  std::optional<std::uint64_t> seed;
+  if (const auto colon = spec.rfind(':'); colon != std::string::npos) {
+    const std::string digits = spec.substr(colon + 1);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 18)
+      throw std::runtime_error("environment '" + spec + "': the part after ':' must be a clutter seed (digits)");
+    seed = std::stoull(digits);
+    base = spec.substr(0, colon);
+  }
+  const bool is_path = base.find('/') != std::string::npos || base.ends_with(".toml");
+  const std::string path = is_path ? base : find_environment_file(base);
+  if (path.empty() && !is_path)
+    if (const auto text = builtin_environment(base)) {
+      // A built-in map is an input like a file: its text (this binary's copy)
+      // is part of the sweep's identity.
+      const std::string name = base + ".toml (built in)";
+      if (source) *source = {name, fnv1a64(std::string(*text))};
+      return parse_text(std::string(*text), name, size_x, size_y, seed);
+    }
+  if (path.empty() || !fs::exists(path))
+    throw std::runtime_error("environment '" + spec +
+                             "' not found: give a path to a .toml file, \"empty\", or a name "
+                             "from experiments/envs/");
+  return parse_file(path, size_x, size_y, seed, source);
+}
+
+std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x,
+                                                         double size_y) {
+  std::lock_guard lock(mutex_);
+  auto key = std::tuple{spec, size_x, size_y};
+  auto it = cache_.find(key);
+  if (it != cache_.end()) return it->second;
+  InputRecord source;
+  auto env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y, &source));
+  cache_.emplace(key, env);
+  if (!source.path.empty()) files_[spec] = source;
+  return env;
+}
+
+std::map<std::string, InputRecord> EnvironmentCache::files() const {
+  std::lock_guard lock(mutex_);
+  return files_;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,341 @@
+#include "engine/store/h5_merge.hpp"
+
+#include <hdf5.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "engine/store/h5_detail.hpp"
+#include "engine/store/h5_store.hpp"
+#include "engine/store/input_identity.hpp"
+#include "engine/store/rollback_driver.hpp"
+#include "engine/spec/shard.hpp"
+#include "engine/store/provenance.hpp"
+
+namespace chaosweep {
+
+namespace fs = std::filesystem;
+using h5::Handle;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what) { throw std::runtime_error(what); }
+
+// Rows read and written at once, in bytes: a block takes as many rows of
+// every shard as fit (at least one each).
+constexpr std::size_t block_bytes = std::size_t(64) << 20;
+
+// A shard file's place in its sweep, from its provenance attributes.
+struct ShardOf {
+  std::string spec_hash, shard;  // shard as written: "K/N"
+  std::string inputs_hash;       // "" when not recorded (an older chaosweep)
+  int index = 0, count = 1;
+  std::int64_t runs_total = 0;
+};
+
+ShardOf shard_of(const std::string& path) {
+  ShardOf s;
+  s.spec_hash = read_attribute(path, "spec_hash");  // throws naming the file
+  s.shard = read_attribute(path, "shard");
+  try {
+    s.inputs_hash = read_attribute(path, "inputs_hash");
+  } catch (const std::exception&) {
+  }
+  const std::string total = read_attribute(path, "runs_total");
+  char tail = 0;
+  if (std::sscanf(s.shard.c_str(), "%d/%d%c", &s.index, &s.count, &tail) != 2 || s.index < 0 || s.count < 1 ||
+      s.index >= s.count)
+    fail(path + ": attribute 'shard' is '" + s.shard +
+         "', not K/N (a merged file cannot be merged again: give its shard files)");
+  try {
+    std::size_t used = 0;
+    s.runs_total = std::stoll(total, &used);
+    if (used != total.size() || s.runs_total < 0 || s.runs_total > (std::int64_t(1) << 62))
+      throw std::invalid_argument(total);
+  } catch (const std::exception&) {
+    fail(path + ": attribute 'runs_total' is '" + total + "', not a run count");
+  }
+  return s;
+}
+
+// Why shard `path` cannot be merged with `first` though their spec is the
+// same: the environment files differ (named), or `path` records none.
+std::string different_inputs(const std::string& path, const std::string& first, bool unrecorded) {
+  if (unrecorded)
+    return path + " does not record its input files (written by an older chaosweep): whether its environment "
+                  "files match " + first + "'s cannot be checked";
+  const std::string changes = changed_inputs(read_attribute(first, "input_files"), read_attribute(path, "input_files"));
+  return path + " was made with other input files than " + first + ": " +
+         (changes.empty() ? "inputs_hash differs" : changes);
+}
+
+// An input's /runs, open for the whole merge.
+struct Input {
+  std::string path;
+  ShardOf shard;
+  std::unique_ptr<Handle> file, dset, ftype, native;
+  hsize_t rows = 0;
+};
+
+void open_input(Input& in, std::size_t cache_bytes) {
+  in.file = std::make_unique<Handle>(open_result_file(in.path), H5Fclose);
+  Handle dapl{H5Pcreate(H5P_DATASET_ACCESS), H5Pclose};
+  H5Pset_chunk_cache(dapl.id, H5D_CHUNK_CACHE_NSLOTS_DEFAULT, cache_bytes, H5D_CHUNK_CACHE_W0_DEFAULT);
+  hid_t d;
+  H5E_BEGIN_TRY { d = H5Dopen2(in.file->id, "/runs", dapl.id); }
+  H5E_END_TRY;
+  if (d < 0) fail(in.path + " has no /runs dataset (not a chaosweep result file)");
+  in.dset = std::make_unique<Handle>(d, H5Dclose);
+  in.ftype = std::make_unique<Handle>(H5Dget_type(d), H5Tclose);
+  in.native = std::make_unique<Handle>(H5Tget_native_type(in.ftype->id, H5T_DIR_ASCEND), H5Tclose);
+  Handle space{H5Dget_space(d), H5Sclose};
+  H5Sget_simple_extent_dims(space.id, &in.rows, nullptr);
+}
+
+// Rows [first, first + n) of `in` in its native row type.
+void read_rows(const Input& in, hsize_t first, hsize_t n, std::vector<unsigned char>& buf, hid_t type) {
+  buf.assign(std::size_t(n) * H5Tget_size(type), 0);
+  if (n == 0) return;
+  Handle fspace{H5Dget_space(in.dset->id), H5Sclose};
+  H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &first, nullptr, &n, nullptr);
+  Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
+  herr_t rc;
+  H5E_BEGIN_TRY { rc = H5Dread(in.dset->id, type, mspace.id, fspace.id, H5P_DEFAULT, buf.data()); }
+  H5E_END_TRY;
+  if (rc < 0) fail("cannot read /runs of " + in.path + " (rows " + std::to_string(first) + "..): the file is damaged");
+}
+
+void reclaim(hid_t type, std::vector<unsigned char>& buf) {
+  const hsize_t n = buf.size() / H5Tget_size(type);
+  if (n == 0 || H5Tdetect_class(type, H5T_STRING) <= 0) return;
+  Handle space{H5Screate_simple(1, &n, nullptr), H5Sclose};
+  H5Dvlen_reclaim(type, space.id, H5P_DEFAULT, buf.data());
+}
+
+// Shard K of N holds run_ids K, K+N, ... in order (a sweep writes them so):
+// any other row means the file is damaged. Reads run_id in blocks.
+void check_run_ids(const Input& in, std::int64_t runs_total) {
+  const std::int64_t want = shard_size(runs_total, in.shard.index, in.shard.count);
+  if (std::int64_t(in.rows) > want)
+    fail(in.path + " is damaged: it holds " + std::to_string(in.rows) + " rows, but shard " + in.shard.shard + " of " +
+         std::to_string(runs_total) + " runs has " + std::to_string(want));
+  Handle mem{H5Tcreate(H5T_COMPOUND, 8), H5Tclose};
+  H5Tinsert(mem.id, "run_id", 0, H5T_NATIVE_INT64);
+  std::vector<unsigned char> buf;
+  const hsize_t block = hsize_t(1) << 20;
+  for (hsize_t first = 0; first < in.rows; first += block) {
+    const hsize_t n = std::min(block, in.rows - first);
+    read_rows(in, first, n, buf, mem.id);
+    for (hsize_t r = 0; r < n; ++r) {
+      std::int64_t id;
+      std::memcpy(&id, buf.data() + 8 * r, 8);
+      const std::int64_t j = std::int64_t(first + r), expect = shard_run_id(j, in.shard.index, in.shard.count);
+      if (id == expect) continue;
+      const std::string row = "row " + std::to_string(j) + " has run_id " + std::to_string(id);
+      if (id < 0 || id >= runs_total)
+        fail(in.path + " is damaged: " + row + ", outside the spec's runs 0.." + std::to_string(runs_total - 1) +
+             " (re-run shard " + in.shard.shard + ")");
+      fail(in.path + " is damaged: " + row + ", not " + std::to_string(expect) + " (shard " + in.shard.shard +
+           " holds run_ids " + std::to_string(in.shard.index) + ", " + std::to_string(in.shard.index + in.shard.count) +
+           ", ... in order; re-run it)");
+    }
+  }
+}
+
+// The SIMD targets of every input, each once, in order of first use.
+std::string simd_targets(const std::vector<Input>& inputs) {
+  std::string targets;
+  for (const Input& in : inputs)
+    if (has_attribute(in.path, "simd_target")) targets = join_name_lists(targets, read_attribute(in.path, "simd_target"));
+  return targets;
+}
+
+// More shards than this process may open files: raise the soft limit.
+void allow_open_files(std::size_t n) {
+  rlimit lim{};
+  if (getrlimit(RLIMIT_NOFILE, &lim) != 0 || lim.rlim_cur == RLIM_INFINITY || lim.rlim_cur >= n + 64) return;
+  lim.rlim_cur = std::min<rlim_t>(lim.rlim_max, n + 64);
+  setrlimit(RLIMIT_NOFILE, &lim);
+}
+
+// Writes the inputs' rows interleaved by run_id to `path` (created).
+void write_merged(std::vector<Input>& inputs, const std::string& path, std::int64_t total, hsize_t per_shard) {
+  const int count = inputs[0].shard.count;
+  std::vector<const Input*> by_index(std::size_t(count), nullptr);
+  for (const Input& in : inputs) by_index[std::size_t(in.shard.index)] = &in;
+  const hid_t type = inputs[0].native->id;
+  const std::size_t rs = H5Tget_size(type);
+  Handle fapl{rollback_fapl(), H5Pclose};
+  hid_t f;
+  H5E_BEGIN_TRY { f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id); }
+  H5E_END_TRY;
+  if (f < 0) fail("cannot create " + path + ": " + rollback_open_error());
+  Handle file{f, H5Fclose};
+  hsize_t dims = hsize_t(total), maxdims = H5S_UNLIMITED, chunk = 1024;
+  Handle space{H5Screate_simple(1, &dims, &maxdims), H5Sclose};
+  Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
+  H5Pset_chunk(dcpl.id, 1, &chunk);
+  H5Pset_shuffle(dcpl.id);
+  H5Pset_deflate(dcpl.id, 4);
+  Handle dset{H5Dcreate2(file.id, "runs", inputs[0].ftype->id, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
+  if (dset.id < 0) fail("cannot create /runs in " + path);
+  std::vector<std::vector<unsigned char>> part(static_cast<std::size_t>(count));
+  std::vector<unsigned char> out;
+  const hsize_t shard_rows = hsize_t(shard_size(total, 0, count));
+  for (hsize_t j0 = 0; j0 < shard_rows; j0 += per_shard) {
+    const hsize_t first = j0 * hsize_t(count);
+    const hsize_t n = std::min<hsize_t>(hsize_t(total), (j0 + per_shard) * hsize_t(count)) - first;
+    out.assign(std::size_t(n) * rs, 0);
+    for (int k = 0; k < count; ++k) {
+      if (!by_index[std::size_t(k)]) continue;  // a shard of no runs (more shards than runs)
+      const Input& in = *by_index[std::size_t(k)];
+      const hsize_t have = j0 < in.rows ? std::min(per_shard, in.rows - j0) : 0;
+      read_rows(in, j0, have, part[std::size_t(k)], type);
+      for (hsize_t i = 0; i < have; ++i)
+        std::memcpy(out.data() + std::size_t(i * hsize_t(count) + hsize_t(k)) * rs,
+                    part[std::size_t(k)].data() + std::size_t(i) * rs, rs);
+    }
+    Handle fspace{H5Dget_space(dset.id), H5Sclose};
+    H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &first, nullptr, &n, nullptr);
+    Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
+    herr_t rc;
+    H5E_BEGIN_TRY { rc = H5Dwrite(dset.id, type, mspace.id, fspace.id, H5P_DEFAULT, out.data()); }
+    H5E_END_TRY;
+    for (auto& p : part) reclaim(type, p);  // the strings `out` pointed to too
+    if (rc < 0) fail("cannot write " + path + " (the disk may be full)");
+  }
+  // Provenance: the first shard's, with the shard-specific entries replaced.
+  copy_attributes(inputs[0].path, file.id, {"shard", "simd_target"});
+  std::string from;
+  for (const Input& in : inputs) from += (from.empty() ? "" : "\n") + in.path;
+  write_text_attribute(file.id, "shard", "merged from " + std::to_string(inputs.size()) + " files of " +
+                                             std::to_string(count) + " shards");
+  write_text_attribute(file.id, "merged_from", from);
+  write_text_attribute(file.id, "merged_at", utc_now());
+  if (const std::string targets = simd_targets(inputs); !targets.empty())
+    write_text_attribute(file.id, "simd_target", targets);
+  H5Dclose(dset.id);
+  dset.id = -1;
+  const herr_t closed = H5Fclose(file.id);  // flushes: fails when the disk is full
+  file.id = -1;
+  if (closed < 0) {
+    roll_back(path);
+    fail("cannot write " + path + " (the disk may be full)");
+  }
+}
+
+}  // namespace
+
+std::string merge_temp_path(const std::string& output) { return output + ".merging"; }
+
+std::string MergeReport::text() const {
+  std::string s = std::to_string(rows) + " rows of " + std::to_string(runs_total) + " runs";
+  if (missing > 0) {
+    std::string ids;
+    for (std::size_t i = 0; i < first_missing.size(); ++i) ids += (i ? ", " : "") + std::to_string(first_missing[i]);
+    s += "\nmissing " + std::to_string(missing) + " runs (run_id " + ids + (missing > std::int64_t(first_missing.size()) ? ", ..." : "") + ")";
+    std::string shards;
+    for (std::size_t i = 0; i < shards_to_rerun.size(); ++i) {
+      if (i == 20) {
+        shards += ",... (" + std::to_string(shards_to_rerun.size()) + " shards)";
+        break;
+      }
+      shards += (shards.empty() ? "" : ",") + std::to_string(shards_to_rerun[i]);
+    }
+    s += "\nre-run shards " + shards + " of " + std::to_string(shard_count) +
+         " (e.g. chaosweep sweep SPEC -o OUT --shard " + std::to_string(shards_to_rerun.front()) + "/" +
+         std::to_string(shard_count) + " --resume)";
+  }
+  return s;
+}
+
+MergeReport merge_results(const std::vector<std::string>& paths, const std::string& output) {
+  if (paths.empty()) fail("no input files");
+  MergeReport report;
+  std::vector<Input> inputs(paths.size());
+  for (std::size_t f = 0; f < paths.size(); ++f) {
+    inputs[f].path = paths[f];
+    inputs[f].shard = shard_of(paths[f]);
+  }
+  report.runs_total = inputs[0].shard.runs_total;
+  report.shard_count = inputs[0].shard.count;
+  for (std::size_t f = 0; f < inputs.size(); ++f) {
+    const ShardOf& s = inputs[f].shard;
+    if (s.spec_hash != inputs[0].shard.spec_hash)
+      fail(paths[f] + " comes from another spec than " + paths[0] + " (spec_hash differs)");
+    if (s.inputs_hash.empty() || s.inputs_hash != inputs[0].shard.inputs_hash)
+      fail(different_inputs(paths[f], paths[0], s.inputs_hash.empty()));
+    if (s.count != report.shard_count)
+      fail(paths[f] + " is shard " + s.shard + " but " + paths[0] + " has " + std::to_string(report.shard_count) +
+           " shards");
+    if (s.runs_total != report.runs_total)
+      fail(paths[f] + " has runs_total " + std::to_string(s.runs_total) + " but " + paths[0] + " has " +
+           std::to_string(report.runs_total));
+    for (std::size_t g = 0; g < f; ++g) {
+      std::error_code ec;
+      if (fs::equivalent(paths[f], paths[g], ec)) fail(paths[f] + " is given twice (also as " + paths[g] + ")");
+      if (s.shard == inputs[g].shard.shard)
+        fail(paths[f] + " and " + paths[g] + " are both shard " + s.shard + " of the spec: give each shard once");
+    }
+    // What compare, table and figure need, so a merged file is one they read.
+    check_result_columns(paths[f]);
+  }
+  allow_open_files(inputs.size());
+  std::size_t row_size = 0;
+  {
+    Input probe;
+    probe.path = paths[0];
+    open_input(probe, 0);
+    row_size = H5Tget_size(probe.native->id);
+  }
+  // As many rows of each shard per block as fit, up to a chunk (1024 rows):
+  // whole chunks need no chunk cache; fewer keep one chunk cached.
+  const hsize_t per_shard =
+      std::clamp<hsize_t>(hsize_t(block_bytes / (std::max<std::size_t>(row_size, 1) * inputs.size())), 1, 1024);
+  const std::size_t cache = per_shard < 1024 ? 1024 * row_size + 4096 : 0;
+  for (std::size_t f = 0; f < inputs.size(); ++f) {
+    open_input(inputs[f], cache);
+    if (f > 0 && H5Tequal(inputs[f].ftype->id, inputs[0].ftype->id) <= 0)
+      fail(paths[f] + " has other columns than " + paths[0] + " (written by another engine version)");
+    check_run_ids(inputs[f], report.runs_total);
+    report.rows += std::int64_t(inputs[f].rows);
+  }
+  // Missing runs: the rest of each shard (none of an absent shard).
+  std::vector<std::int64_t> have(std::size_t(report.shard_count), 0);
+  for (const Input& in : inputs) have[std::size_t(in.shard.index)] = std::int64_t(in.rows);
+  for (int k = 0; k < report.shard_count; ++k) {
+    const std::int64_t want = shard_size(report.runs_total, k, report.shard_count);
+    if (have[std::size_t(k)] >= want) continue;
+    report.missing += want - have[std::size_t(k)];
+    report.shards_to_rerun.push_back(k);
+    for (std::int64_t j = have[std::size_t(k)]; j < want && j < have[std::size_t(k)] + 10; ++j)
+      report.first_missing.push_back(shard_run_id(j, k, report.shard_count));
+  }
+  std::sort(report.first_missing.begin(), report.first_missing.end());
+  if (report.first_missing.size() > 10) report.first_missing.resize(10);
+  if (!report.ok()) return report;
+
+  const std::string temp = merge_temp_path(output);
+  const fs::path parent = fs::path(output).parent_path();
+  if (!parent.empty()) fs::create_directories(parent);
+  try {
+    write_merged(inputs, temp, report.runs_total, per_shard);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    fs::remove(journal_path(temp), ec);
+    throw;
+  }
+  std::error_code ec;
+  fs::remove(journal_path(output), ec);  // none of this file's: a stale one would mask it
+  fs::rename(temp, output);
+  return report;
+}
+
+}  // namespace chaosweep

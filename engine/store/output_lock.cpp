@@ -1,0 +1,71 @@
+#include "engine/store/output_lock.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+namespace chaosweep {
+
+namespace {
+
+std::string read_holder(int fd) {
+  char buf[256] = {};
+  const ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
+  std::string s(buf, n > 0 ? std::size_t(n) : 0);
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\0')) s.pop_back();
+  return s.empty() ? "another process" : s;
+}
+
+std::string host() {
+  char name[256] = {};
+  gethostname(name, sizeof name - 1);
+  return name;
+}
+
+}  // namespace
+
+OutputLock::OutputLock(const std::string& output) : path_(output + ".lock") {
+  const std::filesystem::path parent = std::filesystem::path(output).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (ec) throw std::runtime_error("cannot create directory " + parent.string() + ": " + ec.message());
+  for (;;) {
+    fd_ = open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno));
+    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int err = errno;
+      const std::string holder = read_holder(fd_);
+      close(fd_);
+      fd_ = -1;
+      if (err == EWOULDBLOCK)
+        throw OutputLocked(output + " is being written by " + holder + " (lock " + path_ +
+                           "); wait for that sweep to end or stop it");
+      throw std::runtime_error("cannot lock " + path_ + ": " + std::strerror(err));
+    }
+    // A holder that was finishing may have removed the file between our open
+    // and our flock: then we hold a lock nobody else can see. Start over.
+    struct stat held{}, named{};
+    if (fstat(fd_, &held) == 0 && stat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev)
+      break;
+    close(fd_);
+  }
+  const std::string me = "process " + std::to_string(getpid()) + " on " + host() + "\n";
+  if (ftruncate(fd_, 0) != 0 || pwrite(fd_, me.data(), me.size(), 0) != ssize_t(me.size())) {
+    // Only the holder's name is lost; the lock itself holds.
+  }
+}
+
+OutputLock::~OutputLock() {
+  if (fd_ < 0) return;
+  unlink(path_.c_str());  // while still locked, so nobody locks the old file after us
+  close(fd_);
+}
+
+}  // namespace chaosweep

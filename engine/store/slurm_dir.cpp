@@ -1,0 +1,49 @@
+#include "engine/store/slurm_dir.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "engine/spec/toml.hpp"
+
+namespace chaosweep {
+
+namespace fs = std::filesystem;
+
+ClusterPlan read_cluster_plan(const fs::path& dir) {
+  const fs::path file = dir / "cluster.toml";
+  if (!fs::exists(file)) throw std::runtime_error(dir.string() + " has no cluster.toml: not written by chaosweep slurm");
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  check_toml_text(text.str());
+  const toml::table t = toml::parse(text.str(), file.string());
+  ClusterPlan p;
+  p.spec = t["spec"].value_or(std::string());
+  p.name = t["name"].value_or(std::string());
+  p.tasks = int(t["tasks"].value_or(0));
+  p.runs = t["runs"].value_or(std::int64_t(0));
+  if (p.tasks < 1) throw std::runtime_error(file.string() + ": 'tasks' must be >= 1");
+  return p;
+}
+
+void write_cluster_plan(const fs::path& dir, const ClusterPlan& plan) {
+  // toml++ writes the strings escaped, whatever characters a path or name holds.
+  const toml::table t{{"spec", plan.spec}, {"name", plan.name}, {"tasks", plan.tasks}, {"runs", plan.runs}};
+  std::ofstream out(dir / "cluster.toml");
+  out << "# written by chaosweep slurm; read by chaosweep status and chaosweep merge --slurm-dir\n" << t << "\n";
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + (dir / "cluster.toml").string());
+}
+
+fs::path shard_file(const fs::path& dir, int k) { return dir / ("shard_" + std::to_string(k) + ".h5"); }
+
+std::vector<std::string> existing_shard_files(const fs::path& dir) {
+  const ClusterPlan plan = read_cluster_plan(dir);
+  std::vector<std::string> files;
+  for (int k = 0; k < plan.tasks; ++k)
+    if (const fs::path f = shard_file(dir, k); fs::exists(f)) files.push_back(f.string());
+  return files;
+}
+
+}  // namespace chaosweep

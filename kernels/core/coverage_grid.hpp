@@ -1,0 +1,83 @@
+#pragma once
+// The coverage grid of docs/spec.md §1: square cells of side SR, ceil(L/SR) per axis
+// (the last row/column clipped to the map), a cell free when its centre is not
+// inside an obstacle. Tracks visited free cells incrementally.
+#include <cstdint>
+#include <vector>
+
+#include "kernels/core/environment.hpp"
+
+namespace chaosweep {
+
+class CoverageGrid {
+ public:
+  enum Cell : std::uint8_t { unvisited = 0, visited = 1, blocked = 2 };
+
+  CoverageGrid(const Environment& env, double cell_size);
+
+  int nx() const { return nx_; }
+  double cell_size() const { return cell_; }
+  double inv_cell_size() const { return inv_cell_; }
+  int ny() const { return ny_; }
+  int free_cells() const { return free_; }
+  int blocked_cells() const { return nx_ * ny_ - free_; }
+  int visited_cells() const { return visited_; }
+  double coverage() const { return free_ > 0 ? double(visited_) / double(free_) : 0.0; }
+  Cell at(int i, int j) const { return Cell(cells_[std::size_t(j) * nx_ + i]); }
+
+  // Cell index of a coordinate, clamped into the grid (a point on the far
+  // wall belongs to the last cell).
+  int cell_x(double x) const { return clamp_index(x * inv_cell_, nx_); }
+  int cell_y(double y) const { return clamp_index(y * inv_cell_, ny_); }
+
+  void mark_cell(int i, int j) {
+    const std::size_t k = std::size_t(j) * nx_ + i;
+    std::uint8_t& c = cells_[k];
+    if (!stamp_.empty() && c != blocked && stamp_[k] != window_) {
+      stamp_[k] = window_;
+      ++window_distinct_;
+    }
+    visited_ += (c == unvisited);
+    c = c == unvisited ? std::uint8_t(visited) : c;
+  }
+
+  // Eq. 5 needs the distinct free cells touched in a window (a segment), new
+  // or repeated. Counting starts with the first begin_window().
+  void begin_window() {
+    if (stamp_.empty()) stamp_.assign(cells_.size(), 0);
+    ++window_;
+    window_distinct_ = 0;
+  }
+  int window_distinct() const { return window_distinct_; }
+  // For the lane integrators, which mark the cells of a window-free run in
+  // place (LaneArrays::cells) and count them: the bytes (row-major, nx per
+  // row) and the count taken back.
+  std::uint8_t* cell_bytes() { return cells_.data(); }
+  void set_visited_cells(int n) { visited_ = n; }
+  void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
+  // Supercover: every cell the closed segment touches, including both side
+  // cells where it passes exactly through a grid corner. Inline for the
+  // common case of a step that stays in its cell.
+  void mark_segment(double x0, double y0, double x1, double y1) {
+    const int i = cell_x(x0), j = cell_y(y0);
+    if (i == cell_x(x1) && j == cell_y(y1)) mark_cell(i, j);
+    else mark_crossing(x0, y0, x1, y1);
+  }
+
+ private:
+  void mark_crossing(double x0, double y0, double x1, double y1);
+  static int clamp_index(double g, int n) {
+    if (!(g > 0.0)) return 0;  // also maps NaN to 0; callers reject NaN first
+    const int i = static_cast<int>(g);
+    return i < n ? i : n - 1;
+  }
+
+  int nx_, ny_, free_ = 0, visited_ = 0;
+  double cell_, inv_cell_;
+  std::vector<std::uint8_t> cells_;
+  std::vector<std::uint32_t> stamp_;  // window id of each cell's last touch
+  std::uint32_t window_ = 0;
+  int window_distinct_ = 0;
+};
+
+}  // namespace chaosweep

@@ -1,0 +1,9 @@
+// Width 4 (AVX2 + FMA), two vectors per pass; this file alone is compiled with -march=x86-64-v3.
+// It must call nothing inline that baseline code also instantiates: only the
+// vector-typed templates live here (see tests/check_simd_symbols.sh).
+#include "kernels/math/simd_lane_math.hpp"
+#include "kernels/lanes/lane_integrator.hpp"
+
+namespace chaosweep {
+void integrate_lanes_avx2(LaneArrays& a, LaneSink& sink) { integrate_lanes<lane::v4d, 2>(a, sink); }
+}  // namespace chaosweep

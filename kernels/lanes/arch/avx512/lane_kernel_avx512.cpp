@@ -1,0 +1,9 @@
+// Width 8 (AVX-512), two vectors per pass, stage by stage in turn; this file alone is compiled with -march=x86-64-v4.
+// It must call nothing inline that baseline code also instantiates: only the
+// vector-typed templates live here (see tests/check_simd_symbols.sh).
+#include "kernels/math/simd_lane_math.hpp"
+#include "kernels/lanes/lane_integrator.hpp"
+
+namespace chaosweep {
+void integrate_lanes_avx512(LaneArrays& a, LaneSink& sink) { integrate_lanes<lane::v8d, 2, true>(a, sink); }
+}  // namespace chaosweep

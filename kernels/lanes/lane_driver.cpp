@@ -1,0 +1,191 @@
+#include "kernels/lanes/lane_driver.hpp"
+
+#include <bit>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "kernels/lanes/lane_arrays.hpp"
+#include "kernels/planners/planner.hpp"
+#include "kernels/planners/arnold/planner_run.hpp"
+
+namespace chaosweep {
+
+LaneSink::~LaneSink() = default;
+
+bool lane_eligible(const RunParams& p) {
+  return p.planner == Planner::arnold && p.integrator == Integrator::rk4;
+}
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+void record_error(RunResult& r, const char* what) {
+  r = RunResult{};
+  r.status = Status::error;
+  r.message = what;
+}
+
+// Runs the lanes cannot take (step doubling, the Logistic planner).
+void run_scalar(const BatchItem& it, RunResult& r) {
+  const auto t0 = clock_type::now();
+  try {
+    r = run_planner(*it.params, *it.env);
+  } catch (const std::exception& e) {
+    record_error(r, e.what());
+  }
+  r.wall_time = std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+
+class LaneDriver final : public LaneSink {
+ public:
+  LaneDriver(RunQueue& queue, int lanes) : q_(queue), items_(queue.items), results_(queue.results), slots_(std::size_t(lanes)) {
+    a_.lanes = lanes;
+    for (int l = 0; l < lanes; ++l) load(l);
+    active_ = any_active();
+  }
+
+  // Visits only the lanes whose step reached dc (to end the run) and the
+  // lanes the integrator flagged (to redo their step in full); it applied
+  // every other lane's step itself. Idle lanes stay flagged and are skipped.
+  bool post_step() override {
+    bool refilled = false;
+    // Steps the integrator applied that reached dc, then the flagged steps;
+    // the two sets are disjoint.
+    for (unsigned m = a_.covered; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), true);
+    for (unsigned m = a_.flagged; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), false);
+    if (refilled) active_ = any_active();
+    return active_;
+  }
+
+  LaneArrays& arrays() { return a_; }
+  bool any_active() const {
+    for (const Slot& s : slots_)
+      if (s.run) return true;
+    return false;
+  }
+
+ private:
+  struct Slot {
+    std::size_t item = 0;
+    std::optional<CoverageGrid> grid;
+    std::unique_ptr<PlannerRun> run;
+    clock_type::time_point t0;
+  };
+
+  // Idle lane: harmless numbers (a frozen, flagged lane), never read back.
+  void idle_lane(int l) {
+    a_.x[l] = a_.y[l] = a_.z[l] = a_.kA[l] = a_.kB[l] = a_.kC[l] = a_.pos6[l] = 0.0;
+    a_.sx[l] = a_.sy[l] = a_.sz[l] = 0.0;
+    a_.cx[l] = a_.cy[l] = a_.cz[l] = 1.0;
+    a_.small[l] = 1.0;
+    a_.fast[l] = a_.fold[l] = a_.UX[l] = a_.UY[l] = 0.0;
+    a_.X[l] = a_.Y[l] = a_.t[l] = a_.fh[l] = a_.steps[l] = a_.seg_step[l] = 0.0;
+    a_.budget[l] = a_.stuck_time[l] = a_.niter[l] = 1.0;
+    a_.t_last_new[l] = a_.lo_x[l] = a_.hi_x[l] = a_.lo_y[l] = a_.hi_y[l] = 0.0;
+    a_.inv_cell[l] = 1.0;
+    a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
+    a_.cells[l] = nullptr;
+    a_.clear[l] = nullptr;
+    a_.clear_here[l] = a_.clear_left[l] = a_.clear_right[l] = a_.clear_down[l] = a_.clear_up[l] = 0.0;
+    a_.visited[l] = 0.0;
+    a_.needed[l] = 1.0;
+  }
+
+  // Lane l's step for the sink (PlannerRun::lane_covered or lane_step); when
+  // its run ends, the lane takes the next one. Returns true when it did.
+  bool handle(int l, bool covered) {
+    Slot& s = slots_[std::size_t(l)];
+    if (!s.run) return false;
+    try {
+      if (!(covered ? s.run->lane_covered(a_, l) : s.run->lane_step(a_, l))) return false;
+      complete(s);
+    } catch (const std::exception& e) {
+      record_error(results_[s.item], e.what());
+      s.run.reset();
+      count(results_[s.item]);
+    }
+    load(l);
+    return true;
+  }
+
+  void complete(Slot& s) {
+    s.run->finish();
+    RunResult& r = results_[s.item];
+    conclude_run(*items_[s.item].params, *s.grid, r);
+    r.wall_time = std::chrono::duration<double>(clock_type::now() - s.t0).count();
+    s.run.reset();
+    count(r);
+  }
+
+  void count(const RunResult& r) {
+    if (q_.finished) q_.finished[std::size_t(&r - results_)].store(1, std::memory_order_release);
+    if (q_.done) *q_.done += 1;
+    if (q_.not_ok && r.status != Status::ok) *q_.not_ok += 1;
+  }
+
+  // Puts the next run that needs integrating into lane l (or leaves it idle).
+  void load(int l) {
+    Slot& s = slots_[std::size_t(l)];
+    for (;;) {
+      if (q_.stop && q_.stop->load(std::memory_order_relaxed)) break;
+      s.item = q_.next.fetch_add(1);
+      if (s.item >= q_.n) break;
+      s.t0 = clock_type::now();
+      RunResult& r = results_[s.item];
+      const BatchItem& it = items_[s.item];
+      if (!lane_eligible(*it.params)) {  // scalar reference path, right here
+        run_scalar(it, r);
+        count(r);
+        continue;
+      }
+      try {
+        if (!prepare_run(*it.params, *it.env, s.grid, r)) {  // invalid: recorded
+          count(r);
+          continue;
+        }
+        s.run = std::make_unique<PlannerRun>(*it.params, *it.env, *s.grid, r, nullptr);
+        s.run->start();
+        if (s.run->ended()) {
+          complete(s);
+          continue;
+        }
+        s.run->write_lane(a_, l);
+        return;
+      } catch (const std::exception& e) {
+        record_error(r, e.what());
+        s.run.reset();
+        count(r);
+      }
+    }
+    idle_lane(l);
+  }
+
+  RunQueue& q_;
+  const BatchItem* items_;
+  RunResult* results_;
+  std::vector<Slot> slots_;
+  LaneArrays a_;
+  bool active_ = false;  // some lane has a run
+};
+
+}  // namespace
+
+void run_queue(RunQueue& queue, SimdTarget target) {
+  LaneDriver driver(queue, lane_count(target));
+  if (!driver.any_active()) return;
+  switch (target) {
+    case SimdTarget::scalar: integrate_lanes_scalar(driver.arrays(), driver); break;
+    case SimdTarget::avx2: integrate_lanes_avx2(driver.arrays(), driver); break;
+    case SimdTarget::avx512: integrate_lanes_avx512(driver.arrays(), driver); break;
+  }
+}
+
+void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target) {
+  RunQueue queue{items, results, n};
+  run_queue(queue, target);
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,243 @@
+#pragma once
+// The lane loop shared by every width: load N interleaved vectors of W lanes
+// from the arrays, take RK4 steps (the same arithmetic as the scalar
+// reference, see arnold_flow.hpp) with the state in registers, apply each
+// step's common case (fast_path, mark_entered) until a step leaves the sink
+// work, store, let the sink handle it. Include only from
+// lane_kernel_<target>.cpp.
+#include "kernels/systems/arnold_flow.hpp"
+#include "kernels/core/boundary.hpp"
+#include "kernels/lanes/lane_arrays.hpp"
+
+namespace chaosweep {
+
+template <class V>
+inline V lane_load(const double* p) {
+  V v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <class V>
+inline void lane_store(double* p, V v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+
+// The steps fast_path applied (lane o in bit 0), and among them those that
+// entered a neighbouring cell (to be marked: mark_entered).
+struct FastPathBits {
+  unsigned applied, entered;
+};
+
+// The step's common case, vectorised (see LaneArrays). Mirrors
+// RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
+// operation for operation, so a lane's result never depends on the path.
+// `passes`: the steps taken since the arrays' step and segment counts were
+// last brought up to date (count_steps), this one included. General: some
+// lane of the kernel has the fold boundary or obstacles (else the short form
+// for mirror lanes on open maps).
+template <class V, bool General>
+inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passes) {
+  const V one = lane::splat<V>(1.0);
+  const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
+  const V lo_x = lane_load<V>(a.lo_x + o), hi_x = lane_load<V>(a.hi_x + o);
+  const V lo_y = lane_load<V>(a.lo_y + o), hi_y = lane_load<V>(a.hi_y + o);
+  V X1 = X + s.dX, Y1 = Y + s.dY, UX{}, UY{}, UX1{}, UY1{};
+  if constexpr (!General) {
+    // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a
+    // step that needs more than one is flagged below (still outside the band).
+    X1 = lane::select(X1 < lo_x, (lo_x + lo_x) - X1, X1);
+    X1 = lane::select(X1 > hi_x, (hi_x + hi_x) - X1, X1);
+    Y1 = lane::select(Y1 < lo_y, (lo_y + lo_y) - Y1, Y1);
+    Y1 = lane::select(Y1 > hi_y, (hi_y + hi_y) - Y1, Y1);
+  } else {
+    // RobotMotion::move in full: fold lanes fold their unfolded position,
+    // mirror lanes their own (mirror_eq7 is the fold of the band).
+    const auto is_fold = lane_load<V>(a.fold + o) == one;
+    UX = lane_load<V>(a.UX + o);
+    UY = lane_load<V>(a.UY + o);
+    UX1 = UX + s.dX;
+    UY1 = UY + s.dY;
+    X1 = triangle_fold(lane::select(is_fold, UX1, X1), lo_x, hi_x);
+    Y1 = triangle_fold(lane::select(is_fold, UY1, Y1), lo_y, hi_y);
+  }
+  const V t1 = t + lane_load<V>(a.fh + o);
+  const V inv = lane_load<V>(a.inv_cell + o);
+  // cell_x's clamp from below is a no-op for the steps applied: they end
+  // inside the band, X1 >= lo_x >= 0 (fo, or 0 for the fold; a -0 index
+  // compares equal to 0).
+  const V mi = lane_load<V>(a.max_i + o), mj = lane_load<V>(a.max_j + o);
+  V ci = lane::trunc(X1 * inv), cj = lane::trunc(Y1 * inv);
+  ci = lane::select(ci < mi, ci, mi);
+  cj = lane::select(cj < mj, cj, mj);
+  const V seg = lane_load<V>(a.seg_step + o) + passes;
+  const V fast = lane_load<V>(a.fast + o), cell_i = lane_load<V>(a.cell_i + o), cell_j = lane_load<V>(a.cell_j + o);
+  const auto inside = (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
+  const auto ok = inside & (fast >= one) & (t1 < lane_load<V>(a.budget + o)) &
+                  ((t1 - lane_load<V>(a.t_last_new + o)) < lane_load<V>(a.stuck_time + o)) &
+                  (seg < lane_load<V>(a.niter + o)) & (s.u.x == s.u.x) & (s.u.y == s.u.y) & (s.u.z == s.u.z);
+  // Cell indices are small whole numbers: the step crossed one edge exactly
+  // when the squared index distance is 1 (a corner or a longer jump is left
+  // to the sink's supercover).
+  const V di = ci - cell_i, dj = cj - cell_j;
+  auto quiet = ok & (ci == cell_i) & (cj == cell_j);
+  auto entered = ok & (fast == lane::splat<V>(2.0)) & (lane::fma(di, di, dj * dj) == one);
+  if constexpr (General) {  // the step must end where Eq. 8 moves nothing
+    quiet = quiet & (lane_load<V>(a.clear_here + o) == one);
+    const V target = lane::select(di == one, lane_load<V>(a.clear_right + o),
+                                  lane::select(di == -one, lane_load<V>(a.clear_left + o),
+                                               lane::select(dj == one, lane_load<V>(a.clear_up + o),
+                                                            lane_load<V>(a.clear_down + o))));
+    entered = entered & (target == one);
+  }
+  const auto applied = quiet | entered;
+  lane_store(a.X + o, lane::select(applied, X1, X));
+  lane_store(a.Y + o, lane::select(applied, Y1, Y));
+  lane_store(a.t + o, lane::select(applied, t1, t));
+  if constexpr (General) {
+    lane_store(a.UX + o, lane::select(applied, UX1, UX));
+    lane_store(a.UY + o, lane::select(applied, UY1, UY));
+  }
+  lane_store(a.cell_i + o, lane::select(applied, ci, cell_i));
+  lane_store(a.cell_j + o, lane::select(applied, cj, cell_j));
+  return {lane::bits(applied), lane::bits(entered)};
+}
+
+// Marks the cells the `entered` lanes' applied steps entered, as
+// CoverageGrid::mark_cell and after_move would (a new cell counts and stamps
+// t_last_new); returns the lanes whose count reached dc. Scalar: a lane
+// enters a cell about once in 30 steps. A template on V only to keep each
+// kernel file's copy its own (tests/check_simd_symbols.sh).
+template <class V>
+inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
+  unsigned covered = 0;
+  for (; entered != 0; entered &= entered - 1) {
+    const int l = __builtin_ctz(entered);
+    if (a.clear[l] != nullptr) lane_clearance<V>(a, l);
+    unsigned char& c = a.cells[l][long(a.cell_j[l]) * (long(a.max_i[l]) + 1) + long(a.cell_i[l])];
+    if (c != 0) continue;  // visited already (a cell clear of obstacles is not blocked)
+    c = 1;
+    a.t_last_new[l] = a.t[l];
+    a.visited[l] += 1.0;
+    if (a.visited[l] >= a.needed[l]) covered |= 1u << l;
+  }
+  return covered;
+}
+
+// One vector's inputs to a step, from the arrays at lane offset o.
+template <class V>
+struct StepInput {
+  Vec3<V> u;
+  Trig3<V> t;
+  StepScale<V> sc;
+  decltype(V() < V()) small;
+};
+
+template <class V>
+inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
+  return {{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)},
+          {lane_load<V>(a.sx + o), lane_load<V>(a.cx + o), lane_load<V>(a.sy + o), lane_load<V>(a.cy + o),
+           lane_load<V>(a.sz + o), lane_load<V>(a.cz + o)},
+          {{lane_load<V>(a.kA + o), lane_load<V>(a.kB + o), lane_load<V>(a.kC + o)}, lane_load<V>(a.pos6 + o)},
+          lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
+}
+
+// Brings the step and segment counts up to date after `passes` steps of
+// which every lane took all but the last, and the lanes in `applied` that
+// one too (a flagged lane's step is the sink's to count).
+template <class V>
+inline void count_steps(LaneArrays& a, int passes, unsigned applied) {
+  for (int l = 0; l < a.lanes; ++l) {
+    const double taken = passes - ((applied >> l) & 1u ? 0 : 1);
+    a.steps[l] += taken;
+    a.seg_step[l] += taken;
+  }
+}
+
+template <class V>
+inline void store_step(LaneArrays& a, int o, const Rk4Step<V>& s) {
+  lane_store(a.x + o, s.u.x);
+  lane_store(a.y + o, s.u.y);
+  lane_store(a.z + o, s.u.z);
+  lane_store(a.sx + o, s.t.sx);
+  lane_store(a.cx + o, s.t.cx);
+  lane_store(a.sy + o, s.t.sy);
+  lane_store(a.cy + o, s.t.cy);
+  lane_store(a.sz + o, s.t.sz);
+  lane_store(a.cz + o, s.t.cz);
+  lane_store(a.dX + o, s.dX);
+  lane_store(a.dY + o, s.dY);
+}
+
+// What a run of steps between two calls of the sink leaves it.
+struct StepsDone {
+  unsigned flagged = 0, covered = 0, applied = 0;
+  int passes = 0;
+};
+
+// Steps the lanes from the arrays' state, keeping it in registers, until a
+// step leaves the sink work; stores every lane's state after that step.
+template <class V, int N, bool Staged, bool General>
+inline StepsDone steps_until_sink(LaneArrays& a) {
+  constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
+  constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
+  StepInput<V> in[N];
+  for (int k = 0; k < N; ++k) in[k] = load_step_input<V>(a, k * w);
+  StepsDone d;
+  do {
+    ++d.passes;
+    Rk4Step<V> s[N];
+    if constexpr (Staged && N == 2) {
+      Rk4Work<V, HeadingZ> wk[2];
+      for (int k = 0; k < 2; ++k) {
+        wk[k].u = in[k].u;
+        wk[k].small = in[k].small;
+      }
+      if (lane::all(wk[0].small & wk[1].small))
+        rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
+      else
+        rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
+    } else {
+      for (int k = 0; k < N; ++k)
+        s[k] = rk4_step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
+    }
+    unsigned entered = 0;
+    d.applied = 0;
+    for (int k = 0; k < N; ++k) {
+      const FastPathBits b = fast_path<V, General>(a, k * w, s[k], lane::splat<V>(double(d.passes)));
+      d.applied |= b.applied << (k * w);
+      entered |= b.entered << (k * w);
+      in[k].u = s[k].u;
+      in[k].t = s[k].t;
+    }
+    d.flagged = ~d.applied & all_lanes;
+    d.covered = mark_entered<V>(a, entered);
+    if ((d.flagged | d.covered) != 0)
+      for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
+  } while ((d.flagged | d.covered) == 0);
+  return d;
+}
+
+// The lanes one kernel keeps in flight: N vectors of V (a.lanes, see
+// lane_count). Their Arnold state stays in registers from step to step while
+// no lane needs the sink; before the sink runs, every lane's state goes to
+// the arrays, and after it comes back from them (the sink may rewrite any).
+// flatten: the step and the fast path inline into one loop body, one for
+// lanes that are all under the mirror boundary on open maps and one for the
+// others.
+// Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
+template <class V, int N, bool Staged = false>
+[[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
+  for (;;) {
+    bool general = false;
+    for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.clear[l] != nullptr;
+    const StepsDone d =
+        general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
+    count_steps<V>(a, d.passes, d.applied);
+    a.flagged = d.flagged;
+    a.covered = d.covered;
+    if (!sink.post_step()) return;
+  }
+}
+
+}  // namespace chaosweep

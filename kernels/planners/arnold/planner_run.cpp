@@ -1,0 +1,280 @@
+#include "kernels/planners/arnold/planner_run.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "kernels/core/chaotic_spread.hpp"
+#include "kernels/planners/arnold/control.hpp"
+#include "kernels/core/metrics.hpp"
+#include "kernels/math/splitmix.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+bool finite(const Vec3<double>& u) {
+  return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z);
+}
+
+int auto_th(const RunParams& p, const Environment& env) {
+  if (p.th > 0) return p.th;
+  // Paper: th = 10 on 50 m maps, higher on larger maps (docs/spec.md §2: 10 * L / 50).
+  return std::max(1, int(std::lround(10.0 * std::max(env.lx, env.ly) / 50.0)));
+}
+
+}  // namespace
+
+Vec3<double> initial_state(const RunParams& p) {
+  const Vec3<double> u = jittered_ic(p);
+  return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
+}
+
+LogisticMap initial_logistic(const RunParams& p) {
+  double x0 = p.logistic_x0;
+  if (p.logistic_jitter > 0) {
+    std::uint64_t s = std::uint64_t(p.seed);
+    for (int k = 0; k < 3; ++k) (void)uniform_pm1(s);  // the draws of initial_state, whether used or not
+    x0 += p.logistic_jitter * uniform_pm1(s);
+  }
+  return {x0, p.logistic_r};
+}
+
+PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
+                       TraceSink* trace)
+    : p_(p), env_(env), grid_(grid), r_(r), trace_(trace),
+      needed_(cells_needed(p, grid)),
+      budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
+      k_{p.A, p.B, p.C}, u_(initial_state(p)), trig_(trig3(u_)), ds_(p.ds_index), h_(p.dt),
+      last_visited_(0), th_(auto_th(p, env)), robot_(p, env, grid),
+      logistic_(initial_logistic(p)), zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
+  last_visited_ = grid_.visited_cells();
+  if (trace_) trace_->point({0.0, robot_.x(), robot_.y(), SegmentKind::start, ds_});
+}
+
+void PlannerRun::end(Status s, const char* why) {
+  ended_ = true;
+  r_.status = s;
+  if (why) r_.message = why;
+  if (s == Status::ok) r_.coverage_time = t_;
+}
+
+
+
+void PlannerRun::start() {
+  // The start cell alone may already satisfy a tiny dc.
+  if (grid_.visited_cells() >= needed_) end(Status::ok);
+  else if (p_.planner == Planner::arnold) begin_segment();
+}
+
+void PlannerRun::finish() {
+  r_.t_end = t_;
+  r_.final_x = robot_.x();
+  r_.final_y = robot_.y();
+  r_.final_ds_index = ds_;
+}
+
+void PlannerRun::run() {
+  start();
+  if (p_.planner == Planner::logistic) logistic_loop();
+  else
+    while (!ended_) arnold_step();
+  finish();
+}
+
+// ------------------------------------------------------------- Algorithm 1
+
+void PlannerRun::begin_segment() {
+  ++r_.segments;
+  if (p_.map_zoning) grid_.begin_window();
+  seg_c_u_ = grid_.free_cells() - grid_.visited_cells();  // unvisited before the segment
+  seg_before_ = grid_.visited_cells();
+  seg_step_ = 0;
+  trig_ = trig3(u_);  // a segment starts from exact trig: bounds the carried trig's drift
+}
+
+void PlannerRun::end_segment() {
+  const long c_n = grid_.visited_cells() - seg_before_;
+  const bool keep_exploring =
+      !p_.map_zoning || eq5_keep_exploring(c_n, grid_.window_distinct(), seg_c_u_, cells_total(p_, grid_), p_.c);
+  if (!keep_exploring) {
+    map_zoning();
+  } else if (p_.index_switching && c_n <= p_.switch_min_new) {
+    ds_ = next_ds_index(ds_);
+    ++r_.index_switches;
+  }
+  if (!ended_) begin_segment();
+}
+
+Vec3<double> PlannerRun::lane_state(const LaneArrays& a, int l) const {
+  return from_lane(Vec3<double>{a.x[l], a.y[l], a.z[l]}, ds_);
+}
+
+Trig3<double> PlannerRun::lane_trig(const LaneArrays& a, int l) const {
+  return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, ds_);
+}
+
+void PlannerRun::write_lane(LaneArrays& a, int l) {
+  const Vec3<double> u = to_lane(u_, ds_);
+  const Trig3<double> t = to_lane(trig_, ds_);
+  const StepScale<double> sc = step_scale(to_lane(k_, ds_), h_, p_.f * p_.v * h_);
+  a.x[l] = u.x;
+  a.y[l] = u.y;
+  a.z[l] = u.z;
+  a.sx[l] = t.sx;
+  a.cx[l] = t.cx;
+  a.sy[l] = t.sy;
+  a.cy[l] = t.cy;
+  a.sz[l] = t.sz;
+  a.cz[l] = t.cz;
+  a.kA[l] = sc.kh.A;
+  a.kB[l] = sc.kh.B;
+  a.kC[l] = sc.kh.C;
+  a.pos6[l] = sc.pos6;
+  a.small[l] = small_shift_mode(h_, p_.A, p_.B, p_.C) ? 1.0 : 0.0;
+  a.X[l] = robot_.x();
+  a.Y[l] = robot_.y();
+  a.t[l] = t_;
+  a.fh[l] = p_.f * h_;  // the clock step after_move adds
+  a.budget[l] = budget_;
+  a.stuck_time[l] = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
+  a.t_last_new[l] = t_last_new_;
+  a.steps[l] = double(r_.steps);
+  a.seg_step[l] = seg_step_;
+  a.niter[l] = p_.niter;
+  // A bouncing robot's displacement takes signs the vector code does not
+  // apply: its steps all go to the scalar path (correct first; fast later).
+  const bool bounces = p_.obstacle_response == ObstacleResponse::reflect && !env_.obstacles.empty();
+  a.fast[l] = trace_ != nullptr || bounces ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
+  // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
+  // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
+  const bool fold = p_.boundary == Boundary::fold;
+  a.fold[l] = fold ? 1.0 : 0.0;
+  a.UX[l] = robot_.unfolded_x();
+  a.UY[l] = robot_.unfolded_y();
+  a.lo_x[l] = fold ? 0.0 : 0.0 + p_.fo;
+  a.hi_x[l] = fold ? env_.lx : env_.lx - p_.fo;
+  a.lo_y[l] = fold ? 0.0 : 0.0 + p_.fo;
+  a.hi_y[l] = fold ? env_.ly : env_.ly - p_.fo;
+  a.inv_cell[l] = grid_.inv_cell_size();
+  a.max_i[l] = grid_.nx() - 1;
+  a.max_j[l] = grid_.ny() - 1;
+  a.cell_i[l] = grid_.cell_x(robot_.x());
+  a.cell_j[l] = grid_.cell_y(robot_.y());
+  a.cells[l] = grid_.cell_bytes();
+  a.visited[l] = grid_.visited_cells();
+  a.needed[l] = double(needed_);
+  if (!env_.obstacles.empty() && clear_.empty())
+    clear_ = cells_clear_of_obstacles(env_, p_.fo, grid_.nx(), grid_.ny(), grid_.cell_size());
+  a.clear[l] = env_.obstacles.empty() ? nullptr : clear_.data();
+  lane_clearance<double>(a, l);
+}
+
+void PlannerRun::take_lane_progress(const LaneArrays& a, int l) {
+  robot_.set_position(a.X[l], a.Y[l], a.UX[l], a.UY[l]);
+  t_ = a.t[l];
+  r_.steps = std::int64_t(a.steps[l]);
+  seg_step_ = int(a.seg_step[l]);
+  grid_.set_visited_cells(int(a.visited[l]));
+  last_visited_ = grid_.visited_cells();
+  t_last_new_ = a.t_last_new[l];
+}
+
+bool PlannerRun::lane_step(LaneArrays& a, int l) {
+  take_lane_progress(a, l);
+  const bool segment_or_end = arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);
+  if (ended_) return true;
+  if (segment_or_end) {  // DSindex or the robot may have changed: all of it
+    write_lane(a, l);
+    return false;
+  }
+  a.X[l] = robot_.x();
+  a.Y[l] = robot_.y();
+  a.UX[l] = robot_.unfolded_x();
+  a.UY[l] = robot_.unfolded_y();
+  a.t[l] = t_;
+  a.steps[l] = double(r_.steps);
+  a.seg_step[l] = seg_step_;
+  a.t_last_new[l] = t_last_new_;
+  a.visited[l] = grid_.visited_cells();
+  a.cell_i[l] = grid_.cell_x(robot_.x());
+  a.cell_j[l] = grid_.cell_y(robot_.y());
+  lane_clearance<double>(a, l);
+  return false;
+}
+
+bool PlannerRun::lane_covered(LaneArrays& a, int l) {
+  take_lane_progress(a, l);
+  u_ = lane_state(a, l);
+  end(Status::ok);  // after_move's first check that holds (the integrator checked the position)
+  return true;
+}
+
+bool PlannerRun::point_done(double dt) {
+  if (after_move(dt, SegmentKind::arnold)) return true;
+  if (++seg_step_ < p_.niter) return false;
+  end_segment();
+  return true;
+}
+
+bool PlannerRun::arnold_step_done(const Vec3<double>& u, const Trig3<double>& t, double dX, double dY) {
+  robot_.move(dX, dY);
+  u_ = u;
+  trig_ = t;
+  r_.steps += 1;
+  if (!finite(u_)) {
+    end(Status::diverged, "non-finite Arnold state");
+    return true;
+  }
+  return point_done(p_.f * h_);
+}
+
+void PlannerRun::arnold_step() {
+  const HeadingSelect<double> hs = heading_select(ds_);
+  const double h_pos = p_.f * p_.v * h_;
+  const Rk4Step<double> full = rk4_step(u_, trig_, k_, hs, h_, h_pos);
+  if (p_.integrator == Integrator::rk4_doubling) {
+    const double hh = 0.5 * h_, hh_pos = 0.5 * h_pos;
+    const Rk4Step<double> a = rk4_step(u_, trig_, k_, hs, hh, hh_pos);
+    const Rk4Step<double> b = rk4_step(a.u, a.t, k_, hs, hh, hh_pos);
+    if (std::fabs(full.dX - (a.dX + b.dX)) > p_.ep || std::fabs(full.dY - (a.dY + b.dY)) > p_.ep) {
+      // Accept the two half steps (one point) and keep dt/2 for the rest of the run.
+      robot_.move(a.dX, a.dY);
+      robot_.move(b.dX, b.dY);
+      u_ = b.u;
+      trig_ = b.t;
+      const double dt_used = h_;
+      h_ = hh;
+      r_.steps += 2;
+      ++r_.dt_halvings;
+      if (!finite(u_)) return end(Status::diverged, "non-finite Arnold state");
+      if (point_done(p_.f * dt_used)) return;
+      if (h_ < p_.dt_min) end(Status::diverged, "step doubling shrank dt below dt_min");
+      return;
+    }
+  }
+  arnold_step_done(full.u, full.t, full.dX, full.dY);
+}
+
+// ----------------------------------------------------- Logistic map only
+
+void PlannerRun::logistic_loop() {
+  while (!ended_) logistic_segment();
+}
+
+long PlannerRun::logistic_segment() {
+  ++r_.segments;
+  const long before = grid_.visited_cells();
+  // The heading branch is chosen once per segment: rightwards from the left half.
+  const bool rightwards = robot_.x() < 0.5 * env_.lx;
+  for (int i = 0; i < p_.niter && !ended_; ++i) {
+    if (!logistic_.step()) return end(Status::diverged, "Logistic map reached a fixed point"), 0;
+    const double th = logistic_.heading(rightwards);
+    robot_.move(p_.dt_c * p_.v * std::cos(th), p_.dt_c * p_.v * std::sin(th));
+    ++r_.steps;
+    after_move(p_.dt_c, SegmentKind::logistic);
+  }
+  return grid_.visited_cells() - before;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,131 @@
+#pragma once
+// One run of the seed-000 planner family (Algorithm 1): Arnold segments
+// (Algorithm 3, SystemScaler) with optional index switching, MapZoning
+// transits (Algorithms 2 and 4) and scaling, or Logistic-map segments only.
+// Scalar reference; the SIMD kernels reproduce its Arnold steps bit for bit.
+#include <cmath>
+#include <vector>
+
+#include "kernels/systems/arnold_flow.hpp"
+#include "kernels/core/coverage_grid.hpp"
+#include "kernels/lanes/lane_arrays.hpp"
+#include "kernels/core/environment.hpp"
+#include "kernels/systems/logistic_map.hpp"
+#include "kernels/core/robot_motion.hpp"
+#include "kernels/core/run_params.hpp"
+#include "kernels/core/trace.hpp"
+#include "kernels/planners/arnold/transit.hpp"
+#include "kernels/planners/arnold/zones.hpp"
+
+namespace chaosweep {
+
+class PlannerRun {
+ public:
+  // Expects validated parameters and r.t_opt, r.free_cells set.
+  PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
+             TraceSink* trace);
+  void run();
+
+  // Step-driven use by the lane integrators, which compute fixed-step RK4
+  // steps of many runs at once (LaneArrays): start(), write_lane(), then for
+  // every step the integrator flags (see LaneArrays::flagged) lane_step(), until
+  // it returns true (the run ended); then finish().
+  void start();
+  void write_lane(LaneArrays& a, int l);
+  // Applies the flagged step in full: the robot's move, the cells, the end
+  // checks and, at the end of a segment, the decisions of Algorithm 1 (Eq. 5,
+  // index switching, MapZoning transits, scalar). Takes over the progress the
+  // fast path made since the last call and hands its own back.
+  bool lane_step(LaneArrays& a, int l);
+  // The integrator applied lane l's step and the new cell it marked reached
+  // dc (LaneArrays::covered): ends the run.
+  bool lane_covered(LaneArrays& a, int l);
+  bool ended() const { return ended_; }
+  void finish();
+
+  // The scalar reference path's step, exposed for the lane driver's tests.
+  bool arnold_step_done(const Vec3<double>& u, const Trig3<double>& t, double dX, double dY);
+
+  // Single mechanisms, public so tests can drive them on hand-made cases.
+  // Algorithm 2: try zones in order until one is reached.
+  void map_zoning();
+  // Algorithm 4 around Eq. 6: walk a transit to `goal`, rebuilding it from the
+  // pushed-out point when it enters an obstacle; false after th attempts (or
+  // when the run ended on the way).
+  bool transit_to(Point goal);
+  Point position() const { return {robot_.x(), robot_.y()}; }
+  int th() const { return th_; }
+  double logistic_state() const { return logistic_.x; }
+  double time() const { return t_; }
+
+ private:
+  void logistic_loop();
+  long logistic_segment();
+  // One Arnold step of the scalar path (fixed step or step doubling).
+  void arnold_step();
+  // After an Arnold point: clock, end checks, segment bookkeeping.
+  bool point_done(double dt);
+  void begin_segment();
+  void end_segment();
+
+  // Moves the robot (already displaced by the caller), advances the clock by
+  // dt and checks every way the run can end. Returns true when it ended.
+  [[gnu::always_inline]] inline bool after_move(double dt, SegmentKind kind);
+  void end(Status s, const char* why = nullptr);
+  // The robot, clock, counts, cells and new-cell time the integrator advanced in lane l.
+  void take_lane_progress(const LaneArrays& a, int l);
+  // Lane l's Arnold state and its trig in this run's own labels.
+  Vec3<double> lane_state(const LaneArrays& a, int l) const;
+  Trig3<double> lane_trig(const LaneArrays& a, int l) const;
+
+  const RunParams& p_;
+  const Environment& env_;
+  CoverageGrid& grid_;
+  RunResult& r_;
+  TraceSink* trace_;
+
+  long needed_;
+  double budget_;
+  ArnoldCoeffs<double> k_;
+  Vec3<double> u_;
+  // Trig of u_, carried by rk4_step. u_ changes by RK4 steps alone (not by
+  // switching, zoning or transits); full sincos at the start and at every
+  // segment's start (a pure function of the run, like its segments).
+  Trig3<double> trig_;
+  int ds_;
+  double h_;
+  double t_ = 0.0, t_last_new_ = 0.0;
+  long last_visited_;
+  int th_;
+  RobotMotion robot_;
+  LogisticMap logistic_;
+  Zones zones_;
+  bool ended_ = false;
+  int seg_step_ = 0;
+  long seg_before_ = 0, seg_c_u_ = 0;
+  // The cells Eq. 8 leaves alone, for the lanes (made at the first write_lane).
+  std::vector<unsigned char> clear_;
+};
+
+inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
+  t_ += dt;
+  if (trace_) trace_->point({t_, robot_.x(), robot_.y(), kind, ds_});
+  if (grid_.visited_cells() != last_visited_) {
+    last_visited_ = grid_.visited_cells();
+    t_last_new_ = t_;
+  }
+  if (!std::isfinite(robot_.x()) || !std::isfinite(robot_.y())) end(Status::diverged, "non-finite position");
+  else if (grid_.visited_cells() >= needed_) end(Status::ok);
+  else if (t_ >= budget_) end(Status::timeout);
+  else if (p_.stuck_time > 0 && t_ - t_last_new_ >= p_.stuck_time) end(Status::stuck);
+  return ended_;
+}
+
+// The run's jittered ic (jittered_ic, kernels/core/chaotic_spread.hpp)
+// wrapped into [-pi, pi] (the Arnold planners' state).
+Vec3<double> initial_state(const RunParams& p);
+// The Logistic map a run starts from (and, with logistic_reset = drop,
+// restarts from when a zone is dropped).
+LogisticMap initial_logistic(const RunParams& p);
+
+}  // namespace chaosweep

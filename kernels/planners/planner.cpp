@@ -1,0 +1,85 @@
+#include "kernels/planners/planner.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "kernels/planners/bouncing/bouncing_run.hpp"
+#include "kernels/planners/chebyshev/chebyshev_run.hpp"
+#include "kernels/planners/contraction/contraction_run.hpp"
+#include "kernels/planners/arnold/planner_run.hpp"
+#include "kernels/core/coverage_grid.hpp"
+#include "kernels/core/metrics.hpp"
+#include "kernels/core/param_table.hpp"
+
+namespace chaosweep {
+
+namespace {
+// Bounds the grid's memory (one byte per cell) for absurd size/sr pairs.
+constexpr double max_cells = 1 << 28;
+
+std::string fmt(double v) { return format_number(v); }
+}  // namespace
+
+std::string validate_run(const RunParams& p, const Environment& env) {
+  if (std::string e = check_ranges(p); !e.empty()) return e;
+  if (!(env.lx > 0 && env.ly > 0)) return "environment '" + env.name + "' has no area";
+  if ((env.lx / p.sr) * (env.ly / p.sr) > max_cells)
+    return "sr = " + fmt(p.sr) + " gives more than 2^28 cells on a " + fmt(env.lx) + " x " +
+           fmt(env.ly) + " m map: raise sr or shrink the map";
+  if (p.boundary == Boundary::mirror && !(2 * p.fo < env.lx && 2 * p.fo < env.ly))
+    return "fo = " + fmt(p.fo) + " must be less than half the map side (" +
+           fmt(std::min(env.lx, env.ly) / 2) + ")";
+  if (!(std::isfinite(p.start_x) && std::isfinite(p.start_y)))
+    return "start is unset: give start_x/start_y or an environment with a start";
+  if (p.start_x < 0 || p.start_x > env.lx || p.start_y < 0 || p.start_y > env.ly)
+    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") is outside the map [0, " +
+           fmt(env.lx) + "] x [0, " + fmt(env.ly) + "]";
+  if (int k = env.obstacle_at(p.start_x, p.start_y); k >= 0)
+    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") lies inside obstacle #" +
+           std::to_string(k) + " of environment '" + env.name + "'";
+  if (p.planner == Planner::chebyshev) return validate_chebyshev(p, env);
+  if (p.planner == Planner::contraction) return validate_contraction(p, env);
+  if (p.planner == Planner::bouncing) return validate_bouncing(p);
+  return {};
+}
+
+RunResult run_planner(const RunParams& p, const Environment& env) { return run_planner(p, env, nullptr); }
+
+bool prepare_run(const RunParams& p, const Environment& env, std::optional<CoverageGrid>& grid, RunResult& r) {
+  r = RunResult{};
+  grid.reset();
+  r.message = validate_run(p, env);
+  if (!r.message.empty()) {
+    r.status = Status::invalid;
+    return false;
+  }
+  grid.emplace(env, p.sr);
+  r.free_cells = grid->free_cells();
+  if (r.free_cells == 0) {
+    r.status = Status::invalid;
+    r.message = "environment '" + env.name + "' has no free cell";
+    return false;
+  }
+  r.t_opt = t_opt(p.dc, env.lx * env.ly - env.obstacle_area(), p.sr, p.v);
+  return true;
+}
+
+void conclude_run(const RunParams& p, const CoverageGrid& grid, RunResult& r) {
+  r.visited_cells = grid.visited_cells();
+  r.final_coverage = coverage_rate(p, grid, grid.visited_cells());
+  if (r.status == Status::ok) r.pr = r.coverage_time / r.t_opt;
+}
+
+RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* trace) {
+  RunResult r;
+  std::optional<CoverageGrid> grid;
+  if (!prepare_run(p, env, grid, r)) return r;
+  if (p.planner == Planner::chebyshev) run_chebyshev(p, env, *grid, r, trace);
+  else if (p.planner == Planner::contraction) run_contraction(p, env, *grid, r, trace);
+  else if (p.planner == Planner::bouncing) run_bouncing(p, env, *grid, r, trace);
+  else PlannerRun(p, env, *grid, r, trace).run();
+  conclude_run(p, *grid, r);
+  return r;
+}
+
+}  // namespace chaosweep

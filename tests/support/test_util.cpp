@@ -1,0 +1,113 @@
+#include "tests/support/test_util.hpp"
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <csignal>
+
+#include <atomic>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <unistd.h>
+
+#include <hdf5.h>
+
+namespace chaosweep::test {
+
+namespace fs = std::filesystem;
+
+TempDir::TempDir() {
+  static std::atomic<int> counter{0};
+  path_ = fs::temp_directory_path() /
+          ("chaosweep_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  fs::remove_all(path_);
+  fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+CommandResult run_chaosweep(const std::string& args, const std::string& prefix) {
+  TempDir tmp;
+  const std::string out = tmp.file("out"), err = tmp.file("err");
+  const std::string cmd = prefix + " " + std::string(CHAOSWEEP_BIN) + " " + args + " >" + out + " 2>" + err;
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(out), read_file(err)};
+}
+
+int start_chaosweep(const std::string& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = "exec " + std::string(CHAOSWEEP_BIN) + " " + args + " >/dev/null 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return int(pid);
+}
+
+int wait_exit(int pid, long* max_rss_kib) {
+  int status = 0;
+  rusage usage{};
+  wait4(pid_t(pid), &status, 0, &usage);
+  if (max_rss_kib) *max_rss_kib = usage.ru_maxrss;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+RunParams small_run(double side) {
+  RunParams p;
+  p.size_x = p.size_y = side;
+  p.sr = 1.0;
+  p.start_x = p.start_y = 0.5;
+  return p;
+}
+
+Environment square_map(double side, std::vector<Rect> obstacles) {
+  Environment env;
+  env.name = "hand-made";
+  env.lx = env.ly = side;
+  env.obstacles = std::move(obstacles);
+  return env;
+}
+
+void write_foreign_file(const std::string& path, const std::string& what) {
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t n = 3;
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  if (what == "other-columns") {
+    struct Row {
+      double a;
+      std::int64_t b;
+    } data[3] = {{1, 2}, {3, 4}, {5, 6}};
+    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(Row));
+    H5Tinsert(t, "a", HOFFSET(Row, a), H5T_NATIVE_DOUBLE);
+    H5Tinsert(t, "b", HOFFSET(Row, b), H5T_NATIVE_INT64);
+    hid_t d = H5Dcreate2(file, "runs", t, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+    H5Dclose(d);
+    H5Tclose(t);
+  } else {
+    const int data[3] = {1, 2, 3};
+    hid_t d = H5Dcreate2(file, what == "no-runs" ? "data" : "runs", H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT,
+                         H5P_DEFAULT);
+    H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+    H5Dclose(d);
+  }
+  H5Sclose(space);
+  H5Fclose(file);
+}
+
+}  // namespace chaosweep::test
