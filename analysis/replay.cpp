@@ -4,6 +4,7 @@
 
 #include "kernels/core/param_table.hpp"
 #include "kernels/planners/planner.hpp"
+#include "engine/run/serial_batch_evaluator.hpp"
 #include "engine/store/stored_run.hpp"
 
 namespace chaosweep {
@@ -52,7 +53,7 @@ Replay replay_row(const ResultSet& rs, std::size_t r) {
   }
   std::vector<TracePoint> points;
   CollectingSink sink(points);
-  const RunRow row = evaluate(tuple, &sink);
+  const RunRow row{tuple, SerialBatchEvaluator(&sink).evaluate(tuple)};
   Replay out{tuple, row.result, std::move(points), {}, CoverageGrid(*tuple.env, tuple.params.sr), {}};
   // The covered cells, by the kernel's own marking rule between trace points.
   bool first = true;

@@ -6,10 +6,10 @@
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
-#include "kernels/lanes/lane_driver.hpp"
 #include "kernels/core/param_table.hpp"
 #include "engine/run/simd_choice.hpp"
 #include "engine/run/sweep_runner.hpp"
+#include "engine/run/thread_batch_evaluator.hpp"
 #include "engine/spec/work_bound.hpp"
 
 namespace chaosweep {
@@ -60,11 +60,10 @@ double calibrate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget targ
     t.params.max_time = 2000 * t.params.f * t.params.dt;
     tuples.push_back(t);
   }
-  std::vector<BatchItem> items;
-  for (const RunTuple& t : tuples) items.push_back({&t.params, t.env.get()});
-  std::vector<RunResult> results(items.size());
+  const ThreadBatchEvaluator lanes(1, target);
+  std::vector<RunResult> results(tuples.size());
   const auto t0 = std::chrono::steady_clock::now();
-  run_batch(items.data(), results.data(), items.size(), target);
+  lanes.evaluate(tuples, results);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double steps = 0;
   for (const RunResult& r : results) steps += double(r.steps + r.transit_points);

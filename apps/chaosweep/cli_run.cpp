@@ -10,6 +10,7 @@
 #include "engine/store/h5_store.hpp"
 #include "engine/rows/json_writer.hpp"
 #include "kernels/core/param_table.hpp"
+#include "engine/run/serial_batch_evaluator.hpp"
 #include "engine/spec/run_tuple.hpp"
 #include "engine/store/stored_run.hpp"
 #include "engine/rows/trace_writer.hpp"
@@ -59,6 +60,58 @@ int report_reproduction(const StoredRow& stored, const RunRow& row, const std::s
   return exit_differs;
 }
 
+// The run (or re-run) the flags describe, printed; the exit status.
+int run_command(const std::map<std::string, std::string>& raw, bool json, const std::string& trace_path,
+                const std::string& from, std::int64_t run_id, bool force) {
+  const bool rerun = !from.empty();
+  StoredRun stored;
+  RunTuple tuple;
+  try {
+    if (rerun && !raw.empty()) {
+      std::string flag = "--" + raw.begin()->first;
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      throw SpecError("--from re-runs the stored parameters: drop " + flag + " (and every other parameter flag)");
+    }
+    check_output_free(trace_path, force, "--trace");
+    if (rerun) {
+      stored = load_stored_run(from, run_id);
+      tuple = stored.tuple;
+    } else {
+      RunSpec spec;
+      apply_param_flags(raw, spec);
+      EnvironmentCache cache;
+      tuple = resolve_run(0, spec, cache);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "chaosweep run: " << e.what() << "\n";
+    return exit_bad_input;
+  }
+  std::unique_ptr<CsvTraceWriter> trace;
+  try {
+    if (!trace_path.empty()) trace = std::make_unique<CsvTraceWriter>(trace_path);
+  } catch (const std::exception& e) {
+    std::cerr << "chaosweep run: --trace: " << e.what() << "\n";
+    return exit_failure;
+  }
+  const RunRow row{tuple, SerialBatchEvaluator(trace.get()).evaluate(tuple)};
+  if (trace) {
+    try {
+      trace->close();
+    } catch (const std::exception& e) {
+      std::cerr << "chaosweep run: --trace: " << e.what() << "\n";
+      return exit_failure;
+    }
+  }
+  if (json) std::cout << row_to_json(row) << "\n";
+  else print_readable(row);
+  if (rerun) return report_reproduction(stored.row, row, from, json ? std::cerr : std::cout);
+  if (row.result.status == Status::invalid) {
+    if (json) std::cerr << "chaosweep run: invalid run: " << row.result.message << "\n";
+    return exit_bad_input;
+  }
+  return row.result.status == Status::error ? exit_failure : exit_ok;
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app, std::function<int()>& action) {
@@ -94,53 +147,7 @@ void add_run_command(CLI::App& app, std::function<int()>& action) {
   add_force_flag(*cmd, *force);
   cmd->callback([raw, json, trace_path, from, run_id, force, &action] {
     action = [raw, json, trace_path, from, run_id, force]() -> int {
-      const bool rerun = !from->empty();
-      StoredRun stored;
-      RunTuple tuple;
-      try {
-        if (rerun && !raw->empty()) {
-          std::string flag = "--" + raw->begin()->first;
-          std::replace(flag.begin(), flag.end(), '_', '-');
-          throw SpecError("--from re-runs the stored parameters: drop " + flag + " (and every other parameter flag)");
-        }
-        check_output_free(*trace_path, *force, "--trace");
-        if (rerun) {
-          stored = load_stored_run(*from, *run_id);
-          tuple = stored.tuple;
-        } else {
-          RunSpec spec;
-          apply_param_flags(*raw, spec);
-          EnvironmentCache cache;
-          tuple = resolve_run(0, spec, cache);
-        }
-      } catch (const std::exception& e) {
-        std::cerr << "chaosweep run: " << e.what() << "\n";
-        return exit_bad_input;
-      }
-      std::unique_ptr<CsvTraceWriter> trace;
-      try {
-        if (!trace_path->empty()) trace = std::make_unique<CsvTraceWriter>(*trace_path);
-      } catch (const std::exception& e) {
-        std::cerr << "chaosweep run: --trace: " << e.what() << "\n";
-        return exit_failure;
-      }
-      const RunRow row = evaluate(tuple, trace.get());
-      if (trace) {
-        try {
-          trace->close();
-        } catch (const std::exception& e) {
-          std::cerr << "chaosweep run: --trace: " << e.what() << "\n";
-          return exit_failure;
-        }
-      }
-      if (*json) std::cout << row_to_json(row) << "\n";
-      else print_readable(row);
-      if (rerun) return report_reproduction(stored.row, row, *from, *json ? std::cerr : std::cout);
-      if (row.result.status == Status::invalid) {
-        if (*json) std::cerr << "chaosweep run: invalid run: " << row.result.message << "\n";
-        return exit_bad_input;
-      }
-      return row.result.status == Status::error ? exit_failure : exit_ok;
+      return run_command(*raw, *json, *trace_path, *from, *run_id, *force);
     };
   });
 }

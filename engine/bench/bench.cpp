@@ -7,9 +7,9 @@
 #include <unistd.h>
 
 #include "engine/store/h5_store.hpp"
-#include "kernels/lanes/lane_driver.hpp"
 #include "engine/bench/naive_baseline.hpp"
 #include "engine/run/sweep_runner.hpp"
+#include "engine/run/thread_batch_evaluator.hpp"
 
 namespace chaosweep {
 
@@ -62,15 +62,15 @@ double ns_per_step(Batch batch, double seconds) {
 
 // The whole lane pipeline of one target over the workload.
 double measure_width(SimdTarget target, double seconds) {
-  const Environment env = empty_map();
+  const auto env = std::make_shared<const Environment>(empty_map());
   // Fewer runs for the slow portable width, so that one pass stays short.
-  const auto runs = workload(target == SimdTarget::scalar ? 16 : 1024);
-  std::vector<BatchItem> items;
-  for (const RunParams& p : runs) items.push_back({&p, &env});
-  std::vector<RunResult> results(runs.size());
+  std::vector<RunTuple> tuples;
+  for (const RunParams& p : workload(target == SimdTarget::scalar ? 16 : 1024)) tuples.push_back({0, "empty", "", p, env});
+  std::vector<RunResult> results(tuples.size());
+  const ThreadBatchEvaluator lanes(1, target);
   return ns_per_step(
       [&] {
-        run_batch(items.data(), results.data(), items.size(), target);
+        lanes.evaluate(tuples, results);
         double steps = 0;
         for (const RunResult& r : results) steps += double(r.steps);
         return steps;
@@ -117,10 +117,7 @@ double time_sweep(const SweepSpec& spec, int threads, SimdTarget target) {
   const auto t0 = clock_type::now();
   {
     H5RunWriter writer((dir / "bench.h5").string());
-    SweepOptions opt;
-    opt.threads = threads;
-    opt.target = target;
-    run_sweep(spec, opt, [&](const std::vector<RunRow>& rows) { writer.append(rows); });
+    run_sweep(spec, ThreadBatchEvaluator(threads, target), SweepOptions{}, [&](const std::vector<RunRow>& rows) { writer.append(rows); });
     writer.finish();
   }
   const double s = seconds_since(t0);
@@ -128,16 +125,15 @@ double time_sweep(const SweepSpec& spec, int threads, SimdTarget target) {
   return s;
 }
 
-// The same runs through run_batch alone, one thread: the kernel time.
+// The same runs through the lanes alone, one thread: the kernel time.
 double time_kernels(const SweepSpec& spec, SimdTarget target) {
   EnvironmentCache cache;
   std::vector<RunTuple> tuples;
   for (std::int64_t i = 0; i < spec.size(); ++i) tuples.push_back(resolve_run(i, spec.run(i), cache));
-  std::vector<BatchItem> items;
-  for (const RunTuple& t : tuples) items.push_back({&t.params, t.env.get()});
-  std::vector<RunResult> results(items.size());
+  std::vector<RunResult> results(tuples.size());
+  const ThreadBatchEvaluator lanes(1, target);
   const auto t0 = clock_type::now();
-  run_batch(items.data(), results.data(), items.size(), target);
+  lanes.evaluate(tuples, results);
   return seconds_since(t0);
 }
 

@@ -2,7 +2,7 @@
 // One result row as a JSON object (all inputs and outputs; NaN as null).
 #include <string>
 
-#include "engine/spec/run_tuple.hpp"
+#include "engine/rows/run_row.hpp"
 
 namespace chaosweep {
 std::string row_to_json(const RunRow& row, bool pretty = true);

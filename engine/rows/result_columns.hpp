@@ -8,8 +8,7 @@
 #include <variant>
 #include <vector>
 
-#include "engine/spec/run_tuple.hpp"
-#include "engine/spec/sweep_spec.hpp"
+#include "engine/rows/run_row.hpp"
 
 namespace chaosweep {
 
@@ -29,11 +28,5 @@ struct Column {
 
 const std::vector<Column>& result_columns();
 const Column* find_column(const std::string& name);
-
-// Fixed storage (bytes incl. the NUL) for the text columns a spec decides,
-// env and label: wide enough for the longest value any of its runs takes (a
-// spec's file stays as compact as fixed-length text, which compresses to
-// almost nothing, while variable-length text costs a heap object per row).
-std::map<std::string, std::size_t> text_widths(const SweepSpec& spec);
 
 }  // namespace chaosweep

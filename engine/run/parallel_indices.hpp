@@ -26,4 +26,11 @@ void parallel_indices(tbb::task_arena& arena, std::size_t n, const Body& body) {
   (void)finished.load(std::memory_order_acquire);
 }
 
+// The same on a new arena of `threads` threads (0: all cores).
+template <class Body>
+void parallel_indices(int threads, std::size_t n, const Body& body) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  parallel_indices(arena, n, body);
+}
+
 }  // namespace chaosweep

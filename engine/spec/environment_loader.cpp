@@ -10,7 +10,7 @@
 
 #include "kernels/core/clutter.hpp"
 #include "engine/spec/input_file.hpp"
-#include "engine/spec/run_hash.hpp"
+#include "engine/rows/run_hash.hpp"
 #include "engine/spec/embedded_files.hpp"
 
 namespace chaosweep {

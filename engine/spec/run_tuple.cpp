@@ -1,9 +1,7 @@
 #include "engine/spec/run_tuple.hpp"
 
-#include <chrono>
 #include <cmath>
 
-#include "kernels/planners/planner.hpp"
 
 namespace chaosweep {
 
@@ -22,25 +20,6 @@ RunTuple resolve_run(std::int64_t run_id, const RunSpec& spec, EnvironmentCache&
     if (std::isnan(t.params.start_y)) t.params.start_y = start.second;
   }
   return t;
-}
-
-RunRow evaluate(const RunTuple& t, TraceSink* trace) {
-  RunRow row{t, {}};
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
-    row.result = run_planner(t.params, *t.env, trace);
-  } catch (const std::exception& e) {
-    row.result = RunResult{};
-    row.result.status = Status::error;
-    row.result.message = e.what();
-  } catch (...) {
-    row.result = RunResult{};
-    row.result.status = Status::error;
-    row.result.message = "unknown exception";
-  }
-  row.result.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return row;
 }
 
 }  // namespace chaosweep

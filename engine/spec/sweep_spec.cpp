@@ -10,7 +10,7 @@
 
 #include "engine/spec/decimal_range.hpp"
 #include "kernels/core/param_table.hpp"
-#include "engine/spec/run_hash.hpp"
+#include "engine/rows/run_hash.hpp"
 #include "kernels/math/splitmix.hpp"
 
 namespace chaosweep {

@@ -5,8 +5,13 @@
 
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+
+#include "engine/store/h5_id.hpp"
 
 namespace chaosweep::h5 {
+
+static_assert(std::is_same_v<hid_t, H5Id>, "H5Id must be hid_t");
 
 // The library failed (not the user's file): "HDF5: ..." messages.
 [[noreturn]] inline void fail(const std::string& what) { throw std::runtime_error("HDF5: " + what); }

@@ -15,8 +15,6 @@
 // (rollback_driver.hpp), so a process killed at any moment leaves the file
 // as of its last finished write, which the next open for writing restores
 // and every reader here sees. The file is renamed to NAME only by finish().
-#include <hdf5.h>
-
 #include <cstdint>
 #include <map>
 #include <set>
@@ -25,7 +23,8 @@
 #include <vector>
 
 #include "engine/rows/result_columns.hpp"
-#include "engine/spec/run_tuple.hpp"
+#include "engine/store/h5_id.hpp"
+#include "engine/rows/run_row.hpp"
 
 namespace chaosweep {
 
@@ -74,18 +73,18 @@ class H5RunWriter {
   template <class Body>
   void session(const char* what, Body&& body);
   std::string path_, partial_;
-  hid_t file_ = -1, dset_ = -1, type_ = -1;
+  H5Id file_ = -1, dset_ = -1, type_ = -1;
   std::size_t row_size_ = 0, rows_ = 0;
   std::vector<std::size_t> offsets_, text_sizes_;
 };
 
-// Writes (or replaces) an attribute on `loc` (a file or group). Throws
+// Writes (or replaces) an attribute on `loc` (a file or group: an hid_t). Throws
 // std::runtime_error.
-void write_attribute(hid_t loc, const Attribute& attribute);
-void write_text_attribute(hid_t loc, const std::string& name, const std::string& value);
+void write_attribute(H5Id loc, const Attribute& attribute);
+void write_text_attribute(H5Id loc, const std::string& name, const std::string& value);
 // Copies every root attribute of `from` but those in `skip` to `to`, each of
 // its own type. Throws std::runtime_error naming the file.
-void copy_attributes(const std::string& from, hid_t to, const std::set<std::string>& skip);
+void copy_attributes(const std::string& from, H5Id to, const std::set<std::string>& skip);
 
 // "a, b" and "b, c" -> "a, b, c": the names of both comma-separated lists,
 // each once, in order of first appearance (provenance such as simd_target).
@@ -94,7 +93,7 @@ std::string join_name_lists(const std::string& a, const std::string& b);
 // Result files opened for reading (every reader here): a regular file (a
 // FIFO, device or directory is refused by name, never opened), HDF5, read as
 // of its last finished write. Throws std::runtime_error naming the file.
-hid_t open_result_file(const std::string& path);
+H5Id open_result_file(const std::string& path);
 
 // Readers for tests and tools: one column of /runs, and root attributes.
 std::vector<double> read_f64_column(const std::string& path, const std::string& column);

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "engine/store/h5_store.hpp"
-#include "engine/spec/run_hash.hpp"
+#include "engine/rows/run_hash.hpp"
 
 namespace chaosweep {
 

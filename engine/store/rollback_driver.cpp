@@ -1,6 +1,7 @@
 #include "engine/store/rollback_driver.hpp"
 
 #include <H5FDpublic.h>
+#include <hdf5.h>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>

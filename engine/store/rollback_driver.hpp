@@ -23,15 +23,15 @@
 // crash or power loss (nothing is fsync'ed). Files are plain HDF5: any HDF5
 // reader (h5py, h5dump) opens them; only a file with a pending journal needs
 // this driver (or one write-open by it) to be read as of its last close.
-#include <hdf5.h>
-
 #include <string>
+
+#include "engine/store/h5_id.hpp"
 
 namespace chaosweep {
 
 // A new file-access property list that selects the driver (close it with
 // H5Pclose). Thread-compatible like HDF5 itself.
-hid_t rollback_fapl();
+H5Id rollback_fapl();
 
 // FILE's journal: FILE + ".journal".
 std::string journal_path(const std::string& file);
@@ -44,7 +44,7 @@ void roll_back(const std::string& file);
 // failed: its close keeps the journal, so roll_back() (or the next open for
 // writing) undoes the session. For a write that failed without an I/O error
 // the driver could see (an HDF5 error after the extent grew).
-void abandon_session(hid_t file);
+void abandon_session(H5Id file);
 
 // Why the driver's last open failed in this thread ("" if it did not), e.g.
 // that another process holds the file's lock; for error messages.

@@ -1,5 +1,7 @@
 // The command line, exercised as a user would: the built binary, its output
 // and its exit status.
+#include <hdf5.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>

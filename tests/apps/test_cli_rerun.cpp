@@ -10,7 +10,9 @@
 
 #include "engine/store/h5_store.hpp"
 #include "engine/store/stored_run.hpp"
+#include "engine/run/serial_batch_evaluator.hpp"
 #include "engine/run/sweep_runner.hpp"
+#include "tests/support/sweep_rows.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -48,9 +50,7 @@ C = { start = 0.2, stop = 0.4, step = 0.05 }
 ds_index = [1, 3]
 )",
                                          "odd.toml");
-  SweepOptions opt;
-  opt.threads = 2;
-  return run_sweep_rows(spec, opt);
+  return sweep_rows(spec, ThreadBatchEvaluator(2));
 }
 
 }  // namespace
@@ -75,7 +75,7 @@ TEST(CliRunFrom, EveryRowOfShardsOfTheShippedSpecsIsReproducedBitForBit) {
     ASSERT_FALSE(ids.empty()) << name;
     for (std::int64_t id : ids) {
       const StoredRun stored = load_stored_run(out, id);
-      const RowComparison cmp = compare_row(stored.row, evaluate(stored.tuple));
+      const RowComparison cmp = compare_row(stored.row, {stored.tuple, SerialBatchEvaluator().evaluate(stored.tuple)});
       EXPECT_GT(cmp.compared.size(), 80u);
       for (const ColumnDifference& d : cmp.differences)
         ADD_FAILURE() << name << " run_id " << id << ": " << d.column << " stored " << d.stored << ", re-run " << d.rerun;

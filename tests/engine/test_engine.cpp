@@ -15,9 +15,12 @@
 #include "engine/rows/result_columns.hpp"
 #include "engine/run/progress.hpp"
 #include "engine/run/simd_choice.hpp"
+#include "engine/run/serial_batch_evaluator.hpp"
 #include "engine/run/sweep_runner.hpp"
+#include "engine/run/thread_batch_evaluator.hpp"
+#include "tests/support/sweep_rows.hpp"
 #include "engine/spec/sweep_spec.hpp"
-#include "engine/rows/sweep_summary.hpp"
+#include "engine/run/sweep_summary.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -548,12 +551,10 @@ TEST(Environment, MalformedFilesGiveErrorsNamingTheKey) {
 
 TEST(SweepRunner, RowsDoNotDependOnThreadsOrBatches) {
   const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
-  SweepOptions one, two, odd_batches;
-  one.threads = 1;
-  two.threads = 2;
-  odd_batches.threads = 2;
+  SweepOptions odd_batches;
   odd_batches.batch_size = 7;
-  const auto a = run_sweep_rows(s, one), b = run_sweep_rows(s, two), c = run_sweep_rows(s, odd_batches);
+  const ThreadBatchEvaluator one(1), two(2);
+  const auto a = sweep_rows(s, one), b = sweep_rows(s, two), c = sweep_rows(s, two, odd_batches);
   std::string diff;
   EXPECT_TRUE(same_rows(a, b, diff)) << diff;
   EXPECT_TRUE(same_rows(a, c, diff)) << diff;
@@ -568,7 +569,7 @@ TEST(SweepRunner, ShardsOfASpecWithPartsTileItsRunIds) {
   SweepOptions all, shard;
   shard.shard_index = 1;
   shard.shard_count = 3;
-  const auto a = run_sweep_rows(s, all), b = run_sweep_rows(s, shard);
+  const auto a = sweep_rows(s, all), b = sweep_rows(s, shard);
   ASSERT_EQ(a.size(), std::size_t(s.size()));
   for (const RunRow& r : a) {
     const RunSpec want = s.run(r.tuple.run_id);
@@ -589,7 +590,7 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
   const SweepSpec s = parse_sweep_spec("[fixed]\nsize = 10\nenv = \"" + tmp.file("box.toml") +
                                            "\"\ndc = 0.3\n[axes]\nstart = [[1, 1], [5, 5], [9, 9]]\n",
                                        "x");
-  const auto rows = run_sweep_rows(s, {});
+  const auto rows = sweep_rows(s);
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[0].result.status, Status::ok);
   EXPECT_EQ(rows[1].result.status, Status::invalid);
@@ -646,18 +647,22 @@ A = [0.45, 0.5]
   for (std::int64_t i = 0; i < s.size(); ++i) tuples.push_back(resolve_run(i, s.run(i), cache));
   // The scalar reference: one PlannerRun per run, no lanes.
   std::vector<RunRow> reference;
-  for (const RunTuple& t : tuples) reference.push_back(evaluate(t));
+  for (const RunTuple& t : tuples) reference.push_back({t, SerialBatchEvaluator().evaluate(t)});
   int compared = 0;
   for (SimdTarget target : {SimdTarget::scalar, SimdTarget::avx2, SimdTarget::avx512}) {
     if (!cpu_supports(target)) continue;  // widths this CPU cannot run are tested where it can
     for (int threads : {1, 2})
       for (std::int64_t batch : {1, 7, 4096}) {
-        SweepOptions opt;
-        opt.target = target;
-        opt.threads = threads;
-        opt.batch_size = batch;
+        const ThreadBatchEvaluator lanes(threads, target);
+        std::vector<RunRow> rows;
+        for (std::size_t first = 0; first < tuples.size(); first += std::size_t(batch)) {
+          const std::size_t n = std::min(tuples.size() - first, std::size_t(batch));
+          std::vector<RunResult> results(n);
+          EXPECT_EQ(lanes.evaluate(std::span(tuples).subspan(first, n), results), n);
+          for (std::size_t k = 0; k < n; ++k) rows.push_back({tuples[first + k], results[k]});
+        }
         std::string diff;
-        EXPECT_TRUE(same_rows(reference, run_tuples(tuples, opt), diff))
+        EXPECT_TRUE(same_rows(reference, rows, diff))
             << to_string(target) << ", " << threads << " threads, batches of " << batch << ": " << diff;
         ++compared;
       }
@@ -729,12 +734,57 @@ TEST(Compare, MannWhitneyTellsShiftedFromSameDistributions) {
   EXPECT_TRUE(std::isnan(mann_whitney_p({}, x)));
 }
 
+TEST(BatchEvaluator, RefusesSpansOfDifferentSizesAndTuplesWithoutAnEnvironment) {
+  EnvironmentCache cache;
+  const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
+  std::vector<RunTuple> tuples{resolve_run(0, s.run(0), cache), resolve_run(1, s.run(1), cache)};
+  std::vector<RunResult> one(1), two(2);
+  const ThreadBatchEvaluator lanes(1);
+  const SerialBatchEvaluator serial;
+  for (const BatchEvaluator* e : {static_cast<const BatchEvaluator*>(&lanes), static_cast<const BatchEvaluator*>(&serial)}) {
+    EXPECT_THROW(e->evaluate(tuples, one), std::invalid_argument);
+    tuples[1].env.reset();
+    EXPECT_THROW(e->evaluate(tuples, two), std::invalid_argument);
+    tuples[1] = resolve_run(1, s.run(1), cache);
+    EXPECT_EQ(e->evaluate(tuples, two), 2u);
+  }
+}
+
+TEST(BatchEvaluator, EveryImplementationReportsProgressMarksFinishedSlotsAndStops) {
+  EnvironmentCache cache;
+  const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
+  std::vector<RunTuple> tuples;
+  for (std::int64_t i = 0; i < s.size(); ++i) tuples.push_back(resolve_run(i, s.run(i), cache));
+  const ThreadBatchEvaluator lanes(2);
+  const SerialBatchEvaluator serial;
+  for (const BatchEvaluator* e : {static_cast<const BatchEvaluator*>(&lanes), static_cast<const BatchEvaluator*>(&serial)}) {
+    std::vector<RunResult> out(tuples.size());
+    ProgressCounters counters;
+    auto finished = std::make_unique<std::atomic<std::uint8_t>[]>(tuples.size());
+    BatchObserver observer;
+    observer.progress = &counters;
+    observer.finished = finished.get();
+    ASSERT_EQ(e->evaluate(tuples, out, observer), tuples.size());
+    EXPECT_EQ(counters.done.load(), std::int64_t(tuples.size()));
+    std::int64_t not_ok = 0;
+    for (std::size_t i = 0; i < tuples.size(); ++i) {
+      EXPECT_EQ(finished[i].load(), 1) << i;
+      not_ok += out[i].status != Status::ok;
+    }
+    EXPECT_EQ(counters.failed.load(), not_ok);
+    const std::atomic<bool> stop{true};
+    BatchObserver stopped;
+    stopped.stop = &stop;
+    EXPECT_EQ(e->evaluate(tuples, out, stopped), 0u) << "runs started after the stop";
+  }
+}
+
 // ------------------------------------------------------------------- store
 
 TEST(H5Store, RoundTripsRowsAndProvenance) {
   TempDir tmp;
   const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
-  const auto rows = run_sweep_rows(s, {});
+  const auto rows = sweep_rows(s);
   const std::string path = tmp.file("sub/dir/r.h5");
   {
     H5RunWriter w(path);

@@ -12,8 +12,10 @@
 
 #include "engine/store/h5_store.hpp"
 #include "engine/rows/result_columns.hpp"
+#include "engine/spec/text_widths.hpp"
 #include "engine/store/rollback_driver.hpp"
 #include "engine/run/sweep_runner.hpp"
+#include "tests/support/sweep_rows.hpp"
 #include "engine/spec/sweep_spec.hpp"
 #include "tests/support/test_util.hpp"
 
@@ -246,7 +248,6 @@ SweepSpec few_ms_runs(int a_values) {
 // One batch for the whole sweep, handed over every 20 ms.
 SweepOptions one_batch_timed() {
   SweepOptions opt;
-  opt.threads = 2;
   opt.batch_size = 1 << 20;
   opt.flush_seconds = 0.02;
   return opt;
@@ -260,7 +261,7 @@ TEST(SweepRunner, FinishedRunsReachTheSinkOnTimeAsARunIdPrefixWhileTheBatchRuns)
   const SweepOptions opt = one_batch_timed();
   std::vector<std::size_t> pieces;
   std::vector<RunRow> got;
-  const std::int64_t handed = run_sweep(s, opt, [&](const std::vector<RunRow>& rows) {
+  const std::int64_t handed = run_sweep(s, ThreadBatchEvaluator(2), opt, [&](const std::vector<RunRow>& rows) {
     pieces.push_back(rows.size());
     got.insert(got.end(), rows.begin(), rows.end());
   });
@@ -268,7 +269,7 @@ TEST(SweepRunner, FinishedRunsReachTheSinkOnTimeAsARunIdPrefixWhileTheBatchRuns)
   EXPECT_GT(pieces.size(), 1u) << "the batch reached the sink only at its end";
   SweepOptions whole = opt;
   whole.flush_seconds = 0;
-  const auto want = run_sweep_rows(s, whole);
+  const auto want = sweep_rows(s, ThreadBatchEvaluator(2), whole);
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t i = 0; i < got.size(); ++i) {
     ASSERT_EQ(got[i].tuple.run_id, std::int64_t(i));
@@ -287,7 +288,7 @@ TEST(SweepRunner, ASinkThatFailsStopsTheRunsAndItsErrorReachesTheCaller) {
   SweepOptions opt = one_batch_timed();
   ProgressCounters counters;
   opt.progress = &counters;
-  EXPECT_THROW(run_sweep(s, opt, [](const std::vector<RunRow>&) { throw std::runtime_error("disk full"); }),
+  EXPECT_THROW(run_sweep(s, ThreadBatchEvaluator(2), opt, [](const std::vector<RunRow>&) { throw std::runtime_error("disk full"); }),
                std::runtime_error);
   EXPECT_LT(counters.done.load(), s.size()) << "the runs went on after the sink failed";
 }

@@ -1,4 +1,4 @@
-#include "engine/spec/run_hash.hpp"
+#include "engine/rows/run_hash.hpp"
 
 #include <cstdio>
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/spec/run_tuple.hpp"
+#include "engine/rows/run_row.hpp"
 
 namespace chaosweep {
 

@@ -1,4 +1,4 @@
-#include "engine/rows/sweep_summary.hpp"
+#include "engine/run/sweep_summary.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -1,0 +1,52 @@
+#include "engine/run/thread_batch_evaluator.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <vector>
+
+#include "engine/run/parallel_indices.hpp"
+#include "kernels/lanes/lane_driver.hpp"
+
+namespace chaosweep {
+
+struct ThreadBatchEvaluator::Arena {
+  tbb::task_arena arena;
+};
+
+ThreadBatchEvaluator::ThreadBatchEvaluator(int threads, SimdTarget target)
+    : arena_(std::make_unique<Arena>(Arena{tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic)})),
+      target_(target) {}
+
+ThreadBatchEvaluator::~ThreadBatchEvaluator() = default;
+
+std::size_t ThreadBatchEvaluator::run(std::span<const RunTuple> in, std::span<RunResult> out,
+                                      const BatchObserver& observer) const {
+  const std::size_t n = in.size();
+  std::vector<BatchItem> items(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    items[k] = {&in[k].params, in[k].env.get()};
+    out[k] = RunResult{};
+    out[k].status = Status::error;  // stays so only if a worker itself fails
+    out[k].message = "not run: its worker failed";
+  }
+  RunQueue queue{items.data(), out.data(), n};
+  queue.stop = observer.stop;
+  queue.finished = observer.finished;
+  if (observer.progress) {
+    queue.done = &observer.progress->done;
+    queue.not_ok = &observer.progress->failed;
+  }
+  tbb::task_arena& arena = arena_->arena;
+  const int workers = std::max(1, arena.max_concurrency());
+  parallel_indices(arena, std::size_t(workers), [&](std::size_t) {
+    // A failure of a worker's own bookkeeping (e.g. memory) leaves its
+    // in-flight runs marked error; the other workers go on.
+    try {
+      run_queue(queue, target_);
+    } catch (const std::exception&) {
+    }
+  });
+  return std::min(queue.next.load(), n);  // all claimed runs have finished
+}
+
+}  // namespace chaosweep
