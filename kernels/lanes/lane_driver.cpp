@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "kernels/lanes/lane_arrays.hpp"
+#include "kernels/lanes/lane_binding.hpp"
 #include "kernels/planners/planner.hpp"
-#include "kernels/planners/arnold/planner_run.hpp"
 
 namespace chaosweep {
 
@@ -71,7 +71,7 @@ class LaneDriver final : public LaneSink {
   struct Slot {
     std::size_t item = 0;
     std::optional<CoverageGrid> grid;
-    std::unique_ptr<PlannerRun> run;
+    std::unique_ptr<LaneBinding> run;
     clock_type::time_point t0;
   };
 
@@ -94,7 +94,7 @@ class LaneDriver final : public LaneSink {
     a_.needed[l] = 1.0;
   }
 
-  // Lane l's step for the sink (PlannerRun::lane_covered or lane_step); when
+  // Lane l's step for the sink (LaneBinding::lane_covered or lane_step); when
   // its run ends, the lane takes the next one. Returns true when it did.
   bool handle(int l, bool covered) {
     Slot& s = slots_[std::size_t(l)];
@@ -112,7 +112,7 @@ class LaneDriver final : public LaneSink {
   }
 
   void complete(Slot& s) {
-    s.run->finish();
+    s.run->run().finish();
     RunResult& r = results_[s.item];
     conclude_run(*items_[s.item].params, *s.grid, r);
     r.wall_time = std::chrono::duration<double>(clock_type::now() - s.t0).count();
@@ -146,9 +146,9 @@ class LaneDriver final : public LaneSink {
           count(r);
           continue;
         }
-        s.run = std::make_unique<PlannerRun>(*it.params, *it.env, *s.grid, r, nullptr);
-        s.run->start();
-        if (s.run->ended()) {
+        s.run = std::make_unique<LaneBinding>(*it.params, *it.env, *s.grid, r);
+        s.run->run().start();
+        if (s.run->run().ended()) {
           complete(s);
           continue;
         }

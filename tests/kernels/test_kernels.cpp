@@ -18,7 +18,7 @@
 #include "kernels/planners/planner.hpp"
 #include "kernels/core/robot_motion.hpp"
 #include "kernels/math/sincos.hpp"
-#include "tests/support/test_util.hpp"
+#include "tests/support/kernel_test_util.hpp"
 #include "kernels/planners/arnold/transit.hpp"
 
 using namespace chaosweep;

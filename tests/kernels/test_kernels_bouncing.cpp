@@ -22,7 +22,7 @@
 
 #include "kernels/planners/bouncing/bouncing_cells.hpp"
 #include "kernels/planners/planner.hpp"
-#include "tests/support/test_util.hpp"
+#include "tests/support/kernel_test_util.hpp"
 #include "kernels/planners/bouncing/markov_chain.hpp"
 #include "kernels/planners/bouncing/policy_mixture.hpp"
 #include "kernels/planners/bouncing/roadmap.hpp"

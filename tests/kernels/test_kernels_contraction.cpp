@@ -10,7 +10,7 @@
 
 #include "kernels/planners/contraction/contraction.hpp"
 #include "kernels/planners/planner.hpp"
-#include "tests/support/test_util.hpp"
+#include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
 using namespace chaosweep::seed003;

@@ -9,7 +9,7 @@
 #include "kernels/core/clutter.hpp"
 #include "kernels/planners/planner.hpp"
 #include "kernels/planners/chebyshev/rect_decomposition.hpp"
-#include "tests/support/test_util.hpp"
+#include "tests/support/kernel_test_util.hpp"
 
 namespace chaosweep {
 namespace {

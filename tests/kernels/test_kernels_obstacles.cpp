@@ -16,7 +16,7 @@
 #include "kernels/core/environment.hpp"
 #include "kernels/planners/planner.hpp"
 #include "kernels/math/splitmix.hpp"
-#include "tests/support/test_util.hpp"
+#include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
 

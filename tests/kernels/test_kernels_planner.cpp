@@ -10,7 +10,7 @@
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/planners/planner.hpp"
 #include "kernels/planners/arnold/planner_run.hpp"
-#include "tests/support/test_util.hpp"
+#include "tests/support/kernel_test_util.hpp"
 #include "kernels/planners/arnold/transit.hpp"
 #include "kernels/planners/arnold/zones.hpp"
 

@@ -4,42 +4,14 @@
 #include <sys/wait.h>
 #include <csignal>
 
-#include <atomic>
-#include <cstdio>
-#include <fstream>
-#include <random>
-#include <sstream>
 #include <unistd.h>
+
+#include <cstdint>
+#include <cstdlib>
 
 #include <hdf5.h>
 
 namespace chaosweep::test {
-
-namespace fs = std::filesystem;
-
-TempDir::TempDir() {
-  static std::atomic<int> counter{0};
-  path_ = fs::temp_directory_path() /
-          ("chaosweep_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(path_);
-  fs::create_directories(path_);
-}
-
-TempDir::~TempDir() {
-  std::error_code ec;
-  fs::remove_all(path_, ec);
-}
-
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 CommandResult run_chaosweep(const std::string& args, const std::string& prefix) {
   TempDir tmp;
@@ -65,22 +37,6 @@ int wait_exit(int pid, long* max_rss_kib) {
   wait4(pid_t(pid), &status, 0, &usage);
   if (max_rss_kib) *max_rss_kib = usage.ru_maxrss;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-RunParams small_run(double side) {
-  RunParams p;
-  p.size_x = p.size_y = side;
-  p.sr = 1.0;
-  p.start_x = p.start_y = 0.5;
-  return p;
-}
-
-Environment square_map(double side, std::vector<Rect> obstacles) {
-  Environment env;
-  env.name = "hand-made";
-  env.lx = env.ly = side;
-  env.obstacles = std::move(obstacles);
-  return env;
 }
 
 void write_foreign_file(const std::string& path, const std::string& what) {

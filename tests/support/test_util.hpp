@@ -1,34 +1,12 @@
 #pragma once
-// Shared by the test executables: scratch directories, files, and running the
-// chaosweep binary as a user would.
-#include <filesystem>
-#include <ostream>
+// Shared by the engine, CLI and analysis tests: running the chaosweep binary
+// as a user would, and foreign HDF5 files (the kernel-level helpers, which
+// the kernel tests use alone, are in kernel_test_util.hpp).
 #include <string>
 
-#include "kernels/core/environment.hpp"
-#include "kernels/core/run_params.hpp"
-
-namespace chaosweep {
-// GoogleTest prints statuses by name.
-inline void PrintTo(Status s, std::ostream* os) { *os << to_string(s); }
-}  // namespace chaosweep
+#include "tests/support/kernel_test_util.hpp"
 
 namespace chaosweep::test {
-
-// A fresh directory under the system temp dir, removed at scope exit.
-class TempDir {
- public:
-  TempDir();
-  ~TempDir();
-  const std::filesystem::path& path() const { return path_; }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  std::filesystem::path path_;
-};
-
-void write_file(const std::string& path, const std::string& text);
-std::string read_file(const std::string& path);
 
 struct CommandResult {
   int exit_code;
@@ -44,12 +22,6 @@ int start_chaosweep(const std::string& args);
 // Waits for pid; returns its exit code, or 128 + signal. `max_rss_kib`, when
 // given, receives the process's peak resident set size.
 int wait_exit(int pid, long* max_rss_kib = nullptr);
-
-// A small, fast, valid Arnold run: a `side` m map with 1 m cells.
-RunParams small_run(double side = 10.0);
-
-// A square map with the given obstacles.
-Environment square_map(double side, std::vector<Rect> obstacles = {});
 
 // An HDF5 file that is not a chaosweep result file (docs/inputs.md): `what`
 // is "no-runs" (a dataset /data only), "other-columns" (/runs of two foreign

@@ -1,4 +1,6 @@
-// MapZoning (seed 000, Algorithm 2) and LogisticObstacleAvoid (Algorithm 4).
+// MapZoning (seed 000, Algorithm 2) and LogisticObstacleAvoid (Algorithm 4):
+// PlannerRun members (they drive its robot, clock and zones), declared in
+// planner_run.hpp.
 #include <cmath>
 
 #include "kernels/core/boundary.hpp"

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "kernels/core/chaotic_spread.hpp"
 #include "kernels/planners/arnold/control.hpp"
@@ -104,110 +103,6 @@ void PlannerRun::end_segment() {
     ++r_.index_switches;
   }
   if (!ended_) begin_segment();
-}
-
-Vec3<double> PlannerRun::lane_state(const LaneArrays& a, int l) const {
-  return from_lane(Vec3<double>{a.x[l], a.y[l], a.z[l]}, ds_);
-}
-
-Trig3<double> PlannerRun::lane_trig(const LaneArrays& a, int l) const {
-  return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, ds_);
-}
-
-void PlannerRun::write_lane(LaneArrays& a, int l) {
-  const Vec3<double> u = to_lane(u_, ds_);
-  const Trig3<double> t = to_lane(trig_, ds_);
-  const StepScale<double> sc = step_scale(to_lane(k_, ds_), h_, p_.f * p_.v * h_);
-  a.x[l] = u.x;
-  a.y[l] = u.y;
-  a.z[l] = u.z;
-  a.sx[l] = t.sx;
-  a.cx[l] = t.cx;
-  a.sy[l] = t.sy;
-  a.cy[l] = t.cy;
-  a.sz[l] = t.sz;
-  a.cz[l] = t.cz;
-  a.kA[l] = sc.kh.A;
-  a.kB[l] = sc.kh.B;
-  a.kC[l] = sc.kh.C;
-  a.pos6[l] = sc.pos6;
-  a.small[l] = small_shift_mode(h_, p_.A, p_.B, p_.C) ? 1.0 : 0.0;
-  a.X[l] = robot_.x();
-  a.Y[l] = robot_.y();
-  a.t[l] = t_;
-  a.fh[l] = p_.f * h_;  // the clock step after_move adds
-  a.budget[l] = budget_;
-  a.stuck_time[l] = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
-  a.t_last_new[l] = t_last_new_;
-  a.steps[l] = double(r_.steps);
-  a.seg_step[l] = seg_step_;
-  a.niter[l] = p_.niter;
-  // A bouncing robot's displacement takes signs the vector code does not
-  // apply: its steps all go to the scalar path (correct first; fast later).
-  const bool bounces = p_.obstacle_response == ObstacleResponse::reflect && !env_.obstacles.empty();
-  a.fast[l] = trace_ != nullptr || bounces ? 0.0 : p_.map_zoning ? 1.0 : 2.0;
-  // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
-  // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
-  const bool fold = p_.boundary == Boundary::fold;
-  a.fold[l] = fold ? 1.0 : 0.0;
-  a.UX[l] = robot_.unfolded_x();
-  a.UY[l] = robot_.unfolded_y();
-  a.lo_x[l] = fold ? 0.0 : 0.0 + p_.fo;
-  a.hi_x[l] = fold ? env_.lx : env_.lx - p_.fo;
-  a.lo_y[l] = fold ? 0.0 : 0.0 + p_.fo;
-  a.hi_y[l] = fold ? env_.ly : env_.ly - p_.fo;
-  a.inv_cell[l] = grid_.inv_cell_size();
-  a.max_i[l] = grid_.nx() - 1;
-  a.max_j[l] = grid_.ny() - 1;
-  a.cell_i[l] = grid_.cell_x(robot_.x());
-  a.cell_j[l] = grid_.cell_y(robot_.y());
-  a.cells[l] = grid_.cell_bytes();
-  a.visited[l] = grid_.visited_cells();
-  a.needed[l] = double(needed_);
-  if (!env_.obstacles.empty() && clear_.empty())
-    clear_ = cells_clear_of_obstacles(env_, p_.fo, grid_.nx(), grid_.ny(), grid_.cell_size());
-  a.clear[l] = env_.obstacles.empty() ? nullptr : clear_.data();
-  lane_clearance<double>(a, l);
-}
-
-void PlannerRun::take_lane_progress(const LaneArrays& a, int l) {
-  robot_.set_position(a.X[l], a.Y[l], a.UX[l], a.UY[l]);
-  t_ = a.t[l];
-  r_.steps = std::int64_t(a.steps[l]);
-  seg_step_ = int(a.seg_step[l]);
-  grid_.set_visited_cells(int(a.visited[l]));
-  last_visited_ = grid_.visited_cells();
-  t_last_new_ = a.t_last_new[l];
-}
-
-bool PlannerRun::lane_step(LaneArrays& a, int l) {
-  take_lane_progress(a, l);
-  const bool segment_or_end = arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);
-  if (ended_) return true;
-  if (segment_or_end) {  // DSindex or the robot may have changed: all of it
-    write_lane(a, l);
-    return false;
-  }
-  a.X[l] = robot_.x();
-  a.Y[l] = robot_.y();
-  a.UX[l] = robot_.unfolded_x();
-  a.UY[l] = robot_.unfolded_y();
-  a.t[l] = t_;
-  a.steps[l] = double(r_.steps);
-  a.seg_step[l] = seg_step_;
-  a.t_last_new[l] = t_last_new_;
-  a.visited[l] = grid_.visited_cells();
-  a.cell_i[l] = grid_.cell_x(robot_.x());
-  a.cell_j[l] = grid_.cell_y(robot_.y());
-  lane_clearance<double>(a, l);
-  return false;
-}
-
-bool PlannerRun::lane_covered(LaneArrays& a, int l) {
-  take_lane_progress(a, l);
-  u_ = lane_state(a, l);
-  end(Status::ok);  // after_move's first check that holds (the integrator checked the position)
-  return true;
 }
 
 bool PlannerRun::point_done(double dt) {

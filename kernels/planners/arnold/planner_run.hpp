@@ -8,7 +8,6 @@
 
 #include "kernels/systems/arnold_flow.hpp"
 #include "kernels/core/coverage_grid.hpp"
-#include "kernels/lanes/lane_arrays.hpp"
 #include "kernels/core/environment.hpp"
 #include "kernels/systems/logistic_map.hpp"
 #include "kernels/core/robot_motion.hpp"
@@ -26,27 +25,18 @@ class PlannerRun {
              TraceSink* trace);
   void run();
 
-  // Step-driven use by the lane integrators, which compute fixed-step RK4
-  // steps of many runs at once (LaneArrays): start(), write_lane(), then for
-  // every step the integrator flags (see LaneArrays::flagged) lane_step(), until
-  // it returns true (the run ended); then finish().
+  // Step-driven use, for steps computed elsewhere (the lane integrators;
+  // kernels/lanes/lane_binding.hpp marshals the run into a lane and back):
+  // start(), arnold_step_done() per step until ended(), then finish().
   void start();
-  void write_lane(LaneArrays& a, int l);
-  // Applies the flagged step in full: the robot's move, the cells, the end
-  // checks and, at the end of a segment, the decisions of Algorithm 1 (Eq. 5,
-  // index switching, MapZoning transits, scalar). Takes over the progress the
-  // fast path made since the last call and hands its own back.
-  bool lane_step(LaneArrays& a, int l);
-  // The integrator applied lane l's step and the new cell it marked reached
-  // dc (LaneArrays::covered): ends the run.
-  bool lane_covered(LaneArrays& a, int l);
   bool ended() const { return ended_; }
   void finish();
 
   // The scalar reference path's step, exposed for the lane driver's tests.
   bool arnold_step_done(const Vec3<double>& u, const Trig3<double>& t, double dX, double dY);
 
-  // Single mechanisms, public so tests can drive them on hand-made cases.
+  // Single mechanisms, public so tests can drive them on hand-made cases;
+  // defined in map_zoning.cpp (Algorithms 2 and 4).
   // Algorithm 2: try zones in order until one is reached.
   void map_zoning();
   // Algorithm 4 around Eq. 6: walk a transit to `goal`, rebuilding it from the
@@ -72,11 +62,9 @@ class PlannerRun {
   // dt and checks every way the run can end. Returns true when it ended.
   [[gnu::always_inline]] inline bool after_move(double dt, SegmentKind kind);
   void end(Status s, const char* why = nullptr);
-  // The robot, clock, counts, cells and new-cell time the integrator advanced in lane l.
-  void take_lane_progress(const LaneArrays& a, int l);
-  // Lane l's Arnold state and its trig in this run's own labels.
-  Vec3<double> lane_state(const LaneArrays& a, int l) const;
-  Trig3<double> lane_trig(const LaneArrays& a, int l) const;
+  // The lane marshalling copies the whole state into a lane and back: a
+  // friend rather than accessors for every member.
+  friend class LaneBinding;
 
   const RunParams& p_;
   const Environment& env_;
@@ -103,8 +91,6 @@ class PlannerRun {
   bool ended_ = false;
   int seg_step_ = 0;
   long seg_before_ = 0, seg_c_u_ = 0;
-  // The cells Eq. 8 leaves alone, for the lanes (made at the first write_lane).
-  std::vector<unsigned char> clear_;
 };
 
 inline bool PlannerRun::after_move(double dt, SegmentKind kind) {

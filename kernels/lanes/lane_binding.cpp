@@ -1,0 +1,114 @@
+#include "kernels/lanes/lane_binding.hpp"
+
+#include <cstdint>
+#include <limits>
+
+#include "kernels/core/metrics.hpp"
+
+namespace chaosweep {
+
+Vec3<double> LaneBinding::lane_state(const LaneArrays& a, int l) const {
+  return from_lane(Vec3<double>{a.x[l], a.y[l], a.z[l]}, run_.ds_);
+}
+
+Trig3<double> LaneBinding::lane_trig(const LaneArrays& a, int l) const {
+  return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, run_.ds_);
+}
+
+void LaneBinding::write_lane(LaneArrays& a, int l) {
+  const Vec3<double> u = to_lane(run_.u_, run_.ds_);
+  const Trig3<double> t = to_lane(run_.trig_, run_.ds_);
+  const StepScale<double> sc = step_scale(to_lane(run_.k_, run_.ds_), run_.h_, run_.p_.f * run_.p_.v * run_.h_);
+  a.x[l] = u.x;
+  a.y[l] = u.y;
+  a.z[l] = u.z;
+  a.sx[l] = t.sx;
+  a.cx[l] = t.cx;
+  a.sy[l] = t.sy;
+  a.cy[l] = t.cy;
+  a.sz[l] = t.sz;
+  a.cz[l] = t.cz;
+  a.kA[l] = sc.kh.A;
+  a.kB[l] = sc.kh.B;
+  a.kC[l] = sc.kh.C;
+  a.pos6[l] = sc.pos6;
+  a.small[l] = small_shift_mode(run_.h_, run_.p_.A, run_.p_.B, run_.p_.C) ? 1.0 : 0.0;
+  a.X[l] = run_.robot_.x();
+  a.Y[l] = run_.robot_.y();
+  a.t[l] = run_.t_;
+  a.fh[l] = run_.p_.f * run_.h_;  // the clock step after_move adds
+  a.budget[l] = run_.budget_;
+  a.stuck_time[l] = run_.p_.stuck_time > 0 ? run_.p_.stuck_time : std::numeric_limits<double>::infinity();
+  a.t_last_new[l] = run_.t_last_new_;
+  a.steps[l] = double(run_.r_.steps);
+  a.seg_step[l] = run_.seg_step_;
+  a.niter[l] = run_.p_.niter;
+  // A bouncing robot's displacement takes signs the vector code does not
+  // apply: its steps all go to the scalar path (correct first; fast later).
+  const bool bounces = run_.p_.obstacle_response == ObstacleResponse::reflect && !run_.env_.obstacles.empty();
+  a.fast[l] = run_.trace_ != nullptr || bounces ? 0.0 : run_.p_.map_zoning ? 1.0 : 2.0;
+  // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
+  // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
+  const bool fold = run_.p_.boundary == Boundary::fold;
+  a.fold[l] = fold ? 1.0 : 0.0;
+  a.UX[l] = run_.robot_.unfolded_x();
+  a.UY[l] = run_.robot_.unfolded_y();
+  a.lo_x[l] = fold ? 0.0 : 0.0 + run_.p_.fo;
+  a.hi_x[l] = fold ? run_.env_.lx : run_.env_.lx - run_.p_.fo;
+  a.lo_y[l] = fold ? 0.0 : 0.0 + run_.p_.fo;
+  a.hi_y[l] = fold ? run_.env_.ly : run_.env_.ly - run_.p_.fo;
+  a.inv_cell[l] = run_.grid_.inv_cell_size();
+  a.max_i[l] = run_.grid_.nx() - 1;
+  a.max_j[l] = run_.grid_.ny() - 1;
+  a.cell_i[l] = run_.grid_.cell_x(run_.robot_.x());
+  a.cell_j[l] = run_.grid_.cell_y(run_.robot_.y());
+  a.cells[l] = run_.grid_.cell_bytes();
+  a.visited[l] = run_.grid_.visited_cells();
+  a.needed[l] = double(run_.needed_);
+  if (!run_.env_.obstacles.empty() && clear_.empty())
+    clear_ = cells_clear_of_obstacles(run_.env_, run_.p_.fo, run_.grid_.nx(), run_.grid_.ny(), run_.grid_.cell_size());
+  a.clear[l] = run_.env_.obstacles.empty() ? nullptr : clear_.data();
+  lane_clearance<double>(a, l);
+}
+
+void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
+  run_.robot_.set_position(a.X[l], a.Y[l], a.UX[l], a.UY[l]);
+  run_.t_ = a.t[l];
+  run_.r_.steps = std::int64_t(a.steps[l]);
+  run_.seg_step_ = int(a.seg_step[l]);
+  run_.grid_.set_visited_cells(int(a.visited[l]));
+  run_.last_visited_ = run_.grid_.visited_cells();
+  run_.t_last_new_ = a.t_last_new[l];
+}
+
+bool LaneBinding::lane_step(LaneArrays& a, int l) {
+  take_lane_progress(a, l);
+  const bool segment_or_end = run_.arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);
+  if (run_.ended_) return true;
+  if (segment_or_end) {  // DSindex or the robot may have changed: all of it
+    write_lane(a, l);
+    return false;
+  }
+  a.X[l] = run_.robot_.x();
+  a.Y[l] = run_.robot_.y();
+  a.UX[l] = run_.robot_.unfolded_x();
+  a.UY[l] = run_.robot_.unfolded_y();
+  a.t[l] = run_.t_;
+  a.steps[l] = double(run_.r_.steps);
+  a.seg_step[l] = run_.seg_step_;
+  a.t_last_new[l] = run_.t_last_new_;
+  a.visited[l] = run_.grid_.visited_cells();
+  a.cell_i[l] = run_.grid_.cell_x(run_.robot_.x());
+  a.cell_j[l] = run_.grid_.cell_y(run_.robot_.y());
+  lane_clearance<double>(a, l);
+  return false;
+}
+
+bool LaneBinding::lane_covered(LaneArrays& a, int l) {
+  take_lane_progress(a, l);
+  run_.u_ = lane_state(a, l);
+  run_.end(Status::ok);  // after_move's first check that holds (the integrator checked the position)
+  return true;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,49 @@
+#pragma once
+// A seed-000 PlannerRun bound to one lane of LaneArrays: copies the run's
+// state into lane l for the vector integrators and takes back what they
+// advanced. The marshalling lives here, above the planners, so that the
+// planner knows nothing of lanes.
+#include <vector>
+
+#include "kernels/core/coverage_grid.hpp"
+#include "kernels/core/environment.hpp"
+#include "kernels/core/run_params.hpp"
+#include "kernels/lanes/lane_arrays.hpp"
+#include "kernels/planners/arnold/planner_run.hpp"
+
+namespace chaosweep {
+
+// Step-driven use of a PlannerRun by the lane integrators, which compute
+// fixed-step RK4 steps of many runs at once: run().start(), write_lane(),
+// then for every step the integrator flags (see LaneArrays::flagged)
+// lane_step(), until it returns true (the run ended); then run().finish().
+class LaneBinding {
+ public:
+  // Expects what PlannerRun expects; a lane run has no trace.
+  LaneBinding(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r)
+      : run_(p, env, grid, r, nullptr) {}
+  PlannerRun& run() { return run_; }
+
+  void write_lane(LaneArrays& a, int l);
+  // Applies the flagged step in full: the robot's move, the cells, the end
+  // checks and, at the end of a segment, the decisions of Algorithm 1 (Eq. 5,
+  // index switching, MapZoning transits, scalar). Takes over the progress the
+  // fast path made since the last call and hands its own back.
+  bool lane_step(LaneArrays& a, int l);
+  // The integrator applied lane l's step and the new cell it marked reached
+  // dc (LaneArrays::covered): ends the run.
+  bool lane_covered(LaneArrays& a, int l);
+
+ private:
+  // The robot, clock, counts, cells and new-cell time the integrator advanced in lane l.
+  void take_lane_progress(const LaneArrays& a, int l);
+  // Lane l's Arnold state and its trig in the run's own labels.
+  Vec3<double> lane_state(const LaneArrays& a, int l) const;
+  Trig3<double> lane_trig(const LaneArrays& a, int l) const;
+
+  PlannerRun run_;
+  // The cells Eq. 8 leaves alone (made at the first write_lane).
+  std::vector<unsigned char> clear_;
+};
+
+}  // namespace chaosweep
