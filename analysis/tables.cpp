@@ -197,23 +197,26 @@ double label_number(const std::string& s) {
 
 namespace {
 
-TextTable table1(const ResultSet& rs, const TableOptions& opt) {
-  for (const char* c : {"size_x", "sr", "env", "c", "ds_index", "f", "coverage_time", "status", "t_opt"})
-    if (!rs.has(c)) (void)rs.num(c);
-  const auto paper = read_paper(opt.paper);
-  // Cases: the spec's label (a Table 1 row) when every run has one.
+// A Table 1 case: its runs, technique, best tuple and how many tuples it searched.
+struct Table1Case {
+  Group g;
+  std::string technique;
+  RankedTuple best;
+  std::size_t tuples;
+};
+
+// Cases: the spec's label (a Table 1 row) when every run has one.
+bool every_run_labelled(const ResultSet& rs) {
   bool labelled = rs.has("label");
   if (labelled)
     for (const std::string& l : rs.text("label")) labelled = labelled && !l.empty();
+  return labelled;
+}
+
+std::vector<Table1Case> table1_cases(const ResultSet& rs, bool labelled) {
   const std::vector<std::string> case_keys =
       labelled ? std::vector<std::string>{"label"} : std::vector<std::string>{"size_x", "sr", "env", "variant"};
-  struct Case {
-    Group g;
-    std::string technique;
-    RankedTuple best;
-    std::size_t tuples;
-  };
-  std::vector<Case> cases;
+  std::vector<Table1Case> cases;
   const std::vector<std::string> tuple_keys{"c", "ds_index", "f"};
   for (Group& g : group_rows(rs, case_keys, all_rows(rs))) {
     auto ranked = rank_tuples(rs, tuple_keys, g.rows);
@@ -221,20 +224,61 @@ TextTable table1(const ResultSet& rs, const TableOptions& opt) {
     cases.push_back({std::move(g), tech, std::move(ranked.front()), ranked.size()});
   }
   // Table 1's row order: by row number when the labels are numbers.
-  std::stable_sort(cases.begin(), cases.end(), [](const Case& a, const Case& b) {
+  std::stable_sort(cases.begin(), cases.end(), [](const Table1Case& a, const Table1Case& b) {
     const double x = label_number(a.g.key[0]), y = label_number(b.g.key[0]);
     if (std::isnan(x) || std::isnan(y)) return false;
     return x < y;
   });
+  return cases;
+}
+
+// A case's map (size, SR, env), the key of the original Arnold's best CT.
+std::string map_of(const ResultSet& rs, const Table1Case& c) {
+  const std::size_t r = c.g.rows[0];
+  return rs.cell("size_x", r) + "|" + rs.cell("sr", r) + "|" + rs.text("env")[r];
+}
+
+std::vector<Cell> table1_row(const ResultSet& rs, const Table1Case& c, const std::string& row_name, double base,
+                             const std::map<std::string, std::pair<double, double>>& paper) {
+  const std::size_t r = c.best.tuple.rows[0];
+  const bool mz = c.technique.find("MZ") != std::string::npos;
+  const bool sc = c.technique.find("SC") != std::string::npos;
+  const bool logistic = c.technique == "Logistic map";
+  const double ct = c.best.score;
+  const double gain = (base - ct) / base * 100.0, hours = (base - ct) / 3600.0;
+  std::vector<Cell> row{row_name,
+                        c.technique,
+                        rs.cell("size_x", r) + " m",
+                        rs.cell("sr", r),
+                        rs.text("env")[r],
+                        mz ? rs.cell("c", r) : "N/A",
+                        logistic ? "N/A" : rs.cell("ds_index", r),
+                        sc ? rs.cell("f", r) : "N/A",
+                        std::isinf(ct) ? "-" : sig_cell(ct, 5),
+                        ok_count(rs, c.best.tuple.rows),
+                        std::to_string(c.tuples),
+                        std::isfinite(gain) ? fixed_cell(gain, 1) : "-",
+                        std::isfinite(hours) ? fixed_cell(hours, 2) : "-",
+                        std::isinf(ct) ? "-" : fixed_cell(ct / rs.num("t_opt")[r], 2)};
+  if (!paper.empty()) {
+    const auto p = paper.find(c.g.key[0]);
+    row.push_back(p == paper.end() ? "-" : sig_cell(p->second.first, 5));
+    row.push_back(p == paper.end() || std::isinf(ct) ? "-" : fixed_cell(ct / p->second.first, 2));
+  }
+  return row;
+}
+
+TextTable table1(const ResultSet& rs, const TableOptions& opt) {
+  for (const char* c : {"size_x", "sr", "env", "c", "ds_index", "f", "coverage_time", "status", "t_opt"})
+    if (!rs.has(c)) (void)rs.num(c);
+  const auto paper = read_paper(opt.paper);
+  const bool labelled = every_run_labelled(rs);
+  const std::vector<Table1Case> cases = table1_cases(rs, labelled);
   // The original Arnold's best CT per map (size, SR, env).
-  auto map_of = [&](const Case& c) {
-    const std::size_t r = c.g.rows[0];
-    return rs.cell("size_x", r) + "|" + rs.cell("sr", r) + "|" + rs.text("env")[r];
-  };
   std::map<std::string, double> original;
-  for (const Case& c : cases)
+  for (const Table1Case& c : cases)
     if (c.technique == "original") {
-      auto [it, fresh] = original.try_emplace(map_of(c), c.best.score);
+      auto [it, fresh] = original.try_emplace(map_of(rs, c), c.best.score);
       if (!fresh) it->second = std::min(it->second, c.best.score);
     }
 
@@ -246,35 +290,10 @@ TextTable table1(const ResultSet& rs, const TableOptions& opt) {
     t.header.emplace_back("paper CT (s)");
     t.header.emplace_back("CT / paper");
   }
-  for (const Case& c : cases) {
-    const std::size_t r = c.best.tuple.rows[0];
-    const bool mz = c.technique.find("MZ") != std::string::npos;
-    const bool sc = c.technique.find("SC") != std::string::npos;
-    const bool logistic = c.technique == "Logistic map";
-    const double ct = c.best.score;
-    const auto orig = original.find(map_of(c));
+  for (const Table1Case& c : cases) {
+    const auto orig = original.find(map_of(rs, c));
     const double base = orig == original.end() || c.technique == "original" ? nan : orig->second;
-    const double gain = (base - ct) / base * 100.0, hours = (base - ct) / 3600.0;
-    std::vector<Cell> row{labelled ? c.g.key[0] : std::to_string(&c - cases.data() + 1),
-                                 c.technique,
-                                 rs.cell("size_x", r) + " m",
-                                 rs.cell("sr", r),
-                                 rs.text("env")[r],
-                                 mz ? rs.cell("c", r) : "N/A",
-                                 logistic ? "N/A" : rs.cell("ds_index", r),
-                                 sc ? rs.cell("f", r) : "N/A",
-                                 std::isinf(ct) ? "-" : sig_cell(ct, 5),
-                                 ok_count(rs, c.best.tuple.rows),
-                                 std::to_string(c.tuples),
-                                 std::isfinite(gain) ? fixed_cell(gain, 1) : "-",
-                                 std::isfinite(hours) ? fixed_cell(hours, 2) : "-",
-                                 std::isinf(ct) ? "-" : fixed_cell(ct / rs.num("t_opt")[r], 2)};
-    if (!paper.empty()) {
-      const auto p = paper.find(c.g.key[0]);
-      row.push_back(p == paper.end() ? "-" : sig_cell(p->second.first, 5));
-      row.push_back(p == paper.end() || std::isinf(ct) ? "-" : fixed_cell(ct / p->second.first, 2));
-    }
-    t.add_row(std::move(row));
+    t.add_row(table1_row(rs, c, labelled ? c.g.key[0] : std::to_string(&c - cases.data() + 1), base, paper));
   }
   t.notes.push_back("Per case, the parameter tuple (c, DSindex, f) with the lowest median CT over its runs "
                     "(a run that missed the target counts as infinite); ok = its runs that reached the target; "

@@ -37,15 +37,8 @@ std::vector<std::size_t> part_rows(const ResultSet& rs, const std::string& part)
 
 double pct(const ResultSet& rs, std::size_t r) { return 100.0 * rs.num("final_coverage")[r]; }
 
-}  // namespace
-
-TextTable seed003_table(const ResultSet& rs) {
-  for (const char* c : {"label", "final_coverage", "start_x", "ds_index", "c3_n", "steps", "segments", "reflections"})
-    if (!rs.has(c)) (void)rs.num(c);
-  TextTable t;
-  t.title = "Seed 003: Tables 1-3, the complete-coverage loop and mirror mapping, paper vs ours";
-  t.header = {"table", "row", "quantity", "ours", "paper"};
-  // Tables 1 and 2.
+// Tables 1 and 2.
+void add_tables_1_2(TextTable& t, const ResultSet& rs) {
   std::vector<double> by_heading[3];
   for (std::size_t r : part_rows(rs, "table1")) {
     const int ds = int(rs.num("ds_index")[r]);
@@ -68,16 +61,22 @@ TextTable seed003_table(const ResultSet& rs) {
     t.add_row({"Table 2", std::string("heading ") + heading_name(h + 1), "standard deviation (n - 1)",
                fixed_cell(sd, 4), fixed_cell(paper_sd[h], 4)});
   }
-  // Table 3.
+}
+
+// Table 3.
+void add_table_3(TextTable& t, const ResultSet& rs) {
   for (std::size_t r : part_rows(rs, "table3")) {
     const int n = int(rs.num("c3_n")[r]);
     const auto p = paper_t3.find(n);
     t.add_row({"Table 3", "n = " + std::to_string(n), "coverage % from (10, 10), heading z", fixed_cell(pct(rs, r), 2),
                p == paper_t3.end() ? "-" : fixed_cell(p->second, 2)});
   }
-  // The chaotic spread (experiments/seed003_spread.toml): Table 2's mean and
-  // sd over ic-jittered samples per heading, and Table 3's coverage over
-  // samples per n, with the share that collapsed to the paper's ~10%.
+}
+
+// The chaotic spread (experiments/seed003_spread.toml): Table 2's mean and
+// sd over ic-jittered samples per heading, and Table 3's coverage over
+// samples per n, with the share that collapsed to the paper's ~10%.
+void add_spread(TextTable& t, const ResultSet& rs) {
   for (const Group& g : group_rows(rs, {"ic_jitter", "ds_index"}, part_rows(rs, "table1-spread"))) {
     std::vector<double> v;
     for (std::size_t r : g.rows) v.push_back(pct(rs, r));
@@ -104,7 +103,10 @@ TextTable seed003_table(const ResultSet& rs) {
     const double collapsed = double(std::count_if(v.begin(), v.end(), [](double x) { return x <= 12.0; })) / double(v.size());
     t.add_row({"Table 3 (spread)", row, "share of samples at <= 12% (collapsed)", fixed_cell(collapsed, 3), "-"});
   }
-  // Section 6.
+}
+
+// Section 6: the complete-coverage loop.
+void add_loop(TextTable& t, const ResultSet& rs) {
   for (std::size_t r : part_rows(rs, "loop")) {
     const std::string row = "ic grid step " + rs.cell("c3_ic_grid", r);
     t.add_row({"Section 6", row, "sections", rs.cell("segments", r), "6"});
@@ -113,7 +115,10 @@ TextTable seed003_table(const ResultSet& rs) {
     t.add_row({"Section 6", row, "coverage time to 90% (s, common model)",
                rs.text("status")[r] == "ok" ? sig_cell(rs.num("coverage_time")[r], 5) : "-", "-"});
   }
-  // Figs. 15-16.
+}
+
+// Figs. 15-16: mirror mapping.
+void add_mirror(TextTable& t, const ResultSet& rs) {
   for (std::size_t r : part_rows(rs, "mirror")) {
     const int n = int(rs.num("c3_n")[r]);
     const auto p = paper_mirror.find(n);
@@ -123,6 +128,21 @@ TextTable seed003_table(const ResultSet& rs) {
     t.add_row({"Mirror mapping", row, "coverage %", fixed_cell(pct(rs, r), 2),
                p == paper_mirror.end() ? "-" : fixed_cell(p->second.second, 2)});
   }
+}
+
+}  // namespace
+
+TextTable seed003_table(const ResultSet& rs) {
+  for (const char* c : {"label", "final_coverage", "start_x", "ds_index", "c3_n", "steps", "segments", "reflections"})
+    if (!rs.has(c)) (void)rs.num(c);
+  TextTable t;
+  t.title = "Seed 003: Tables 1-3, the complete-coverage loop and mirror mapping, paper vs ours";
+  t.header = {"table", "row", "quantity", "ours", "paper"};
+  add_tables_1_2(t, rs);
+  add_table_3(t, rs);
+  add_spread(t, rs);
+  add_loop(t, rs);
+  add_mirror(t, rs);
   if (t.rows.empty())
     throw AnalysisError("no seed 003 rows: give the results of experiments/seed003.toml (labels table1, table3, loop, mirror)");
   t.notes.push_back("Read literally (docs/spec.md §4), the heading depends on the Arnold state only, so the start point merely "

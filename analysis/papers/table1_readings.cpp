@@ -62,32 +62,35 @@ const std::vector<std::string>& reading_columns() {
   return c;
 }
 
-TextTable table1_readings(const ResultSet& rs, const TableOptions& opt) {
-  for (const char* c : {"label", "env", "size_x", "size_y", "sr", "free_cells", "ds_index", "c", "f", "map_zoning",
-                        "status", "coverage_time"})
-    if (!rs.has(c)) (void)rs.num(c);
-  std::vector<std::string> keys = opt.by;
-  const bool named = keys.empty();  // one "reading" column naming what differs from the defaults
-  if (named)
-    for (const std::string& c : reading_columns()) {
-      if (!rs.has(c)) continue;
-      std::set<std::string> seen;
-      for (std::size_t r = 0; r < rs.rows() && seen.size() < 2; ++r) seen.insert(rs.cell(c, r));
-      if (seen.size() > 1) keys.push_back(c);
-    }
-  // "transit_time=distance, coverage_cells=all"; "defaults" when none differs.
-  auto reading_name = [&](const std::vector<std::string>& values) {
-    std::string out;
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      const ParamInfo* info = find_param(keys[i]);
-      const bool is_default =
-          info && info->kind == ParamInfo::Kind::choice && values[i] == info->choices[std::size_t(info->get(RunParams{}))];
-      if (!is_default) out += (out.empty() ? "" : ", ") + keys[i] + "=" + values[i];
-    }
-    return out.empty() ? std::string("defaults") : out;
-  };
-  const auto paper = read_paper(opt.paper);
+namespace {
 
+// The reading columns whose values differ between runs.
+std::vector<std::string> differing_readings(const ResultSet& rs) {
+  std::vector<std::string> keys;
+  for (const std::string& c : reading_columns()) {
+    if (!rs.has(c)) continue;
+    std::set<std::string> seen;
+    for (std::size_t r = 0; r < rs.rows() && seen.size() < 2; ++r) seen.insert(rs.cell(c, r));
+    if (seen.size() > 1) keys.push_back(c);
+  }
+  return keys;
+}
+
+// "transit_time=distance, coverage_cells=all"; "defaults" when none differs.
+std::string reading_name(const std::vector<std::string>& keys, const std::vector<std::string>& values) {
+  std::string out;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const ParamInfo* info = find_param(keys[i]);
+    const bool is_default =
+        info && info->kind == ParamInfo::Kind::choice && values[i] == info->choices[std::size_t(info->get(RunParams{}))];
+    if (!is_default) out += (out.empty() ? "" : ", ") + keys[i] + "=" + values[i];
+  }
+  return out.empty() ? std::string("defaults") : out;
+}
+
+// The cases (reading, label, env), in the order the runs first meet the
+// readings (a spec's parts), rows by number.
+std::vector<Case> reading_cases(const ResultSet& rs, const std::vector<std::string>& keys) {
   std::vector<std::string> case_keys = keys;
   for (const char* c : {"label", "env"}) case_keys.emplace_back(c);
   std::vector<Case> cases;
@@ -108,7 +111,6 @@ TextTable table1_readings(const ResultSet& rs, const TableOptions& opt) {
     k.median = tuple_score(rs, g.rows);
     cases.push_back(std::move(k));
   }
-  // Readings in the order the runs first meet them (a spec's parts), rows by number.
   std::map<std::vector<std::string>, double> first;
   for (const Case& k : cases) {
     double id = rs.has("run_id") ? rs.num("run_id")[k.rows[0]] : 0;
@@ -121,21 +123,67 @@ TextTable table1_readings(const ResultSet& rs, const TableOptions& opt) {
     const double x = label_number(a.label), y = label_number(b.label);
     return std::isnan(x) || std::isnan(y) ? a.label < b.label : x < y;
   });
-  // The open-map row of an obstacle row: the same reading's, else (without
-  // map zoning, which is all that a reading can change on an open map) any.
-  auto partner = [&](const Case& k) -> const Case* {
-    const Case* any = nullptr;
-    for (const Case& o : cases) {
-      if (o.obstacles || o.signature != k.signature) continue;
-      if (o.reading == k.reading) return &o;
-      if (!any && !k.map_zoning) any = &o;
-    }
-    return any;
-  };
-  auto paper_ct = [&](const std::string& label) {
-    const auto p = paper.find(label);
-    return p == paper.end() ? nan : p->second.first;
-  };
+  return cases;
+}
+
+// The open-map row of an obstacle row: the same reading's, else (without
+// map zoning, which is all that a reading can change on an open map) any.
+const Case* open_partner(const std::vector<Case>& cases, const Case& k) {
+  const Case* any = nullptr;
+  for (const Case& o : cases) {
+    if (o.obstacles || o.signature != k.signature) continue;
+    if (o.reading == k.reading) return &o;
+    if (!any && !k.map_zoning) any = &o;
+  }
+  return any;
+}
+
+using PaperCts = std::map<std::string, std::pair<double, double>>;
+
+double paper_ct(const PaperCts& paper, const std::string& label) {
+  const auto p = paper.find(label);
+  return p == paper.end() ? nan : p->second.first;
+}
+
+// The columns after the reading: the row's CTs, the paper's, and the ratio
+// to the open-map row `o` (none when null).
+void add_ct_cells(std::vector<Cell>& row, const ResultSet& rs, const Case& k, const Case* o, const PaperCts& paper) {
+  const auto ok = ok_rows(rs, k.rows);
+  const double lo = group_statistic(rs, k.rows, "min"), hi = group_statistic(rs, k.rows, "max");
+  const double pct = paper_ct(paper, k.label);
+  const bool timeouts = ok.size() < k.rows.size();
+  std::string inside = "-";
+  if (!std::isnan(pct) && !ok.empty()) inside = pct >= lo && (pct <= hi || timeouts) ? "yes" : "no";
+  for (Cell c : {Cell(k.env), Cell(k.label), Cell(k.technique),
+                 Cell(std::to_string(ok.size()) + "/" + std::to_string(k.rows.size())),
+                 std::isinf(k.median) ? Cell("-") : sig_cell(k.median, 5), sig_cell(lo, 5), sig_cell(hi, 5),
+                 sig_cell(pct, 5), Cell(inside)})
+    row.push_back(std::move(c));
+  if (!o) {
+    for (int i = 0; i < 5; ++i) row.push_back("-");
+    return;
+  }
+  const double ours = k.median / o->median, theirs = pct / paper_ct(paper, o->label);
+  row.push_back(o->label);
+  row.push_back(fixed_cell(ours, 2));
+  row.push_back(fixed_cell(theirs, 2));
+  row.push_back(fixed_cell(ours / theirs, 2));
+  const auto [lo_r, hi_r] = bootstrap_ratio(rs, k.rows, o->rows);
+  row.push_back(std::isfinite(lo_r) && std::isfinite(hi_r)
+                    ? "[" + fmt_fixed(lo_r / theirs, 2) + ", " + fmt_fixed(hi_r / theirs, 2) + "]"
+                    : "-");
+}
+
+}  // namespace
+
+TextTable table1_readings(const ResultSet& rs, const TableOptions& opt) {
+  for (const char* c : {"label", "env", "size_x", "size_y", "sr", "free_cells", "ds_index", "c", "f", "map_zoning",
+                        "status", "coverage_time"})
+    if (!rs.has(c)) (void)rs.num(c);
+  const bool named = opt.by.empty();  // one "reading" column naming what differs from the defaults
+  const std::vector<std::string> keys = named ? differing_readings(rs) : opt.by;
+  const auto paper = read_paper(opt.paper);
+  const std::vector<Case> cases = reading_cases(rs, keys);
 
   TextTable t;
   t.title = "Table 1 rows under readings of the paper (CT over each row's runs)";
@@ -146,33 +194,9 @@ TextTable table1_readings(const ResultSet& rs, const TableOptions& opt) {
     t.header.emplace_back(h);
   for (const Case& k : cases) {
     std::vector<Cell> row;
-    if (named) row.emplace_back(reading_name(k.reading));
+    if (named) row.emplace_back(reading_name(keys, k.reading));
     else row.assign(k.reading.begin(), k.reading.end());
-    const auto ok = ok_rows(rs, k.rows);
-    const double lo = group_statistic(rs, k.rows, "min"), hi = group_statistic(rs, k.rows, "max");
-    const double pct = paper_ct(k.label);
-    const bool timeouts = ok.size() < k.rows.size();
-    std::string inside = "-";
-    if (!std::isnan(pct) && !ok.empty()) inside = pct >= lo && (pct <= hi || timeouts) ? "yes" : "no";
-    for (Cell c : {Cell(k.env), Cell(k.label), Cell(k.technique),
-                   Cell(std::to_string(ok.size()) + "/" + std::to_string(k.rows.size())),
-                   std::isinf(k.median) ? Cell("-") : sig_cell(k.median, 5), sig_cell(lo, 5), sig_cell(hi, 5),
-                   sig_cell(pct, 5), Cell(inside)})
-      row.push_back(std::move(c));
-    const Case* o = k.obstacles ? partner(k) : nullptr;
-    if (o) {
-      const double ours = k.median / o->median, theirs = pct / paper_ct(o->label);
-      row.push_back(o->label);
-      row.push_back(fixed_cell(ours, 2));
-      row.push_back(fixed_cell(theirs, 2));
-      row.push_back(fixed_cell(ours / theirs, 2));
-      const auto [lo_r, hi_r] = bootstrap_ratio(rs, k.rows, o->rows);
-      row.push_back(std::isfinite(lo_r) && std::isfinite(hi_r)
-                        ? "[" + fmt_fixed(lo_r / theirs, 2) + ", " + fmt_fixed(hi_r / theirs, 2) + "]"
-                        : "-");
-    } else {
-      for (int i = 0; i < 5; ++i) row.push_back("-");
-    }
+    add_ct_cells(row, rs, k, k.obstacles ? open_partner(cases, k) : nullptr, paper);
     t.add_row(std::move(row));
   }
   t.notes.push_back("Per reading (the columns before env) and row: median CT over the row's runs (a run that "

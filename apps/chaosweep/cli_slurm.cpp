@@ -1,5 +1,5 @@
-// `chaosweep slurm` (job scripts for a SLURM array, optionally submitted) and
-// `chaosweep status DIR` (which shards are done, which to resubmit).
+// `chaosweep slurm`: job scripts for a SLURM array, optionally submitted
+// (`chaosweep status DIR`, which reads what it wrote, is cli_status.cpp).
 #include <unistd.h>
 
 #include <filesystem>
@@ -81,6 +81,122 @@ void require(const std::string& flag, const std::optional<std::string>& problem)
   if (problem) throw BadSlurmValue(flag + ": " + *problem);
 }
 
+struct SlurmOptions {
+  std::string spec, dir, partition, time, mem, account, job_name;
+  int tasks = 0, concurrency = 0, cpus = 1;
+  bool submit = false, force = false;
+};
+
+void add_slurm_flags(CLI::App& cmd, SlurmOptions& o) {
+  cmd.add_option("spec", o.spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
+  cmd.add_option("--tasks", o.tasks, "array tasks = shards, at most the spec's runs")->required()->check(CLI::Range(1, 1000000));
+  cmd.add_option("-o,--dir", o.dir, "directory for scripts, logs and results")->required();
+  cmd.add_option("--concurrency", o.concurrency, "at most M tasks at once (--array=...%M)")->check(CLI::Range(0, 1000000));
+  cmd.add_option("--cpus", o.cpus, "cpus per task (the sweep's --threads)")->check(CLI::Range(1, 4096));
+  cmd.add_option("--partition", o.partition, "sbatch --partition: NAME[,NAME...] of letters, digits, _ - .");
+  cmd.add_option("--account", o.account, "sbatch --account: a NAME of letters, digits, _ - .");
+  cmd.add_option("--time", o.time, "sbatch --time: MINUTES, [HOURS:]MINUTES:SECONDS or DAYS-HOURS[:MINUTES[:SECONDS]]");
+  cmd.add_option("--mem", o.mem, "sbatch --mem: a whole number with an optional unit K, M, G, T");
+  cmd.add_option("--job-name", o.job_name, "sbatch --job-name (default chaosweep-SPECNAME)");
+  cmd.add_flag("--submit", o.submit, "submit with sbatch (array, then the dependent merge job)");
+  cmd.add_flag("--force", o.force, "write over the scripts of an earlier `chaosweep slurm` in DIR");
+}
+
+// What the scripts are made of, every value checked.
+struct SlurmJob {
+  SweepSpec spec;
+  fs::path dir;
+  std::string job_name;
+};
+
+// Checks every value before anything is written: a bad value leaves no
+// script behind (throws BadSlurmValue or OutputExists).
+SlurmJob checked_job(const SlurmOptions& o) {
+  SlurmJob job{load_sweep_spec(o.spec), {}, o.job_name};
+  const SweepSpec& spec = job.spec;
+  if (o.tasks > spec.size())
+    throw BadSlurmValue("--tasks: " + std::to_string(o.tasks) + " is more than the spec's " +
+                        std::to_string(spec.size()) + " runs (a task runs at least one): give --tasks in [1, " +
+                        std::to_string(spec.size()) + "]");
+  if (job.job_name.empty()) job.job_name = to_slurm_job_name("chaosweep-" + spec.name);
+  require("--job-name", check_slurm_job_name(job.job_name));
+  if (!o.partition.empty()) require("--partition", check_slurm_partition(o.partition));
+  if (!o.account.empty()) require("--account", check_slurm_account(o.account));
+  if (!o.time.empty()) require("--time", check_slurm_time(o.time));
+  if (!o.mem.empty()) require("--mem", check_slurm_mem(o.mem));
+  job.dir = fs::absolute(o.dir);
+  require("-o", check_slurm_directive_path(job.dir.string()));
+  if (!o.force && fs::exists(job.dir / "cluster.toml"))
+    throw OutputExists("-o: " + o.dir + " already holds a chaosweep slurm sweep (cluster.toml); pass --force "
+                       "to write over its scripts (its shard files stay)");
+  return job;
+}
+
+// Writes DIR/sweep.sbatch, DIR/merge.sbatch and DIR/cluster.toml; returns
+// the --array= value.
+std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
+  const fs::path& dir = job.dir;
+  fs::create_directories(dir / "logs");
+  std::string extra;
+  if (!o.partition.empty()) extra += "\n#SBATCH --partition=" + o.partition;
+  if (!o.account.empty()) extra += "\n#SBATCH --account=" + o.account;
+  if (!o.time.empty()) extra += "\n#SBATCH --time=" + o.time;
+  if (!o.mem.empty()) extra += "\n#SBATCH --mem=" + o.mem;
+  const std::string array =
+      "0-" + std::to_string(o.tasks - 1) + (o.concurrency > 0 ? "%" + std::to_string(o.concurrency) : "");
+  const std::string spec_path = fs::absolute(o.spec).string();
+  for (const char* name : {"sweep", "merge"}) {
+    const auto tmpl = embedded_file(std::string("cluster/") + name + ".sbatch.in");
+    if (!tmpl) throw std::runtime_error(std::string("no built-in template cluster/") + name + ".sbatch.in");
+    // #SBATCH lines take checked values only; shell lines take quoted ones.
+    const std::string text = fill_template(*tmpl, {{"JOB_NAME", job.job_name},
+                                                   {"ARRAY", array},
+                                                   {"LOGS", (dir / "logs").string()},
+                                                   {"CPUS", std::to_string(o.cpus)},
+                                                   {"EXTRA", extra},
+                                                   {"DIR", shell_quote(dir.string())},
+                                                   {"CHAOSWEEP", shell_quote(self_path())},
+                                                   {"SPEC", shell_quote(spec_path)},
+                                                   {"TASKS", std::to_string(o.tasks)}});
+    const fs::path out = dir / (std::string(name) + ".sbatch");
+    write_checked(out, text);
+    fs::permissions(out, fs::perms::owner_exec, fs::perm_options::add);
+  }
+  write_cluster_plan(dir, ClusterPlan{spec_path, job.spec.name, o.tasks, std::int64_t(job.spec.size())});
+  return array;
+}
+
+// Submits the array, then the merge job that waits for it (afterok).
+void submit_jobs(const fs::path& dir) {
+  const auto [rc, id] = capture("sbatch --parsable " + shell_quote((dir / "sweep.sbatch").string()));
+  if (rc != 0) throw std::runtime_error("sbatch failed for the array job");
+  const std::string job = job_id(id);
+  const auto [rc2, id2] =
+      capture("sbatch --parsable --dependency=afterok:" + job + " " + shell_quote((dir / "merge.sbatch").string()));
+  if (rc2 != 0) throw std::runtime_error("sbatch failed for the merge job");
+  std::cout << "submitted array job " << job << " and merge job " << job_id(id2) << "\n";
+}
+
+int run_slurm(const SlurmOptions& o) {
+  SlurmJob job;
+  try {
+    job = checked_job(o);
+  } catch (const std::exception& e) {
+    std::cerr << "chaosweep slurm: " << e.what() << "\n";
+    return exit_bad_input;
+  }
+  try {
+    const std::string array = write_job_scripts(o, job);
+    std::cout << "wrote " << (job.dir / "sweep.sbatch").string() << " (" << job.spec.size() << " runs in " << o.tasks
+              << " shards, --array=" << array << ") and " << (job.dir / "merge.sbatch").string() << "\n";
+    if (o.submit) submit_jobs(job.dir);
+    return exit_ok;
+  } catch (const std::exception& e) {
+    std::cerr << "chaosweep slurm: " << e.what() << "\n";
+    return exit_failure;
+  }
+}
+
 }  // namespace
 
 void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
@@ -92,176 +208,10 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
       "job with --dependency=afterok on the array. Every value that goes into a script is checked\n"
       "against the form SLURM accepts for it (exit 2 otherwise); paths are shell-quoted. Example:\n"
       "  chaosweep slurm experiments/fig6.toml --tasks 16 --concurrency 8 -o runs/fig6 --submit");
-  struct Opts {
-    std::string spec, dir, partition, time, mem, account, job_name;
-    int tasks = 0, concurrency = 0, cpus = 1;
-    bool submit = false, force = false;
-  };
-  auto o = std::make_shared<Opts>();
-  cmd->add_option("spec", o->spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--tasks", o->tasks, "array tasks = shards, at most the spec's runs")->required()->check(CLI::Range(1, 1000000));
-  cmd->add_option("-o,--dir", o->dir, "directory for scripts, logs and results")->required();
-  cmd->add_option("--concurrency", o->concurrency, "at most M tasks at once (--array=...%M)")->check(CLI::Range(0, 1000000));
-  cmd->add_option("--cpus", o->cpus, "cpus per task (the sweep's --threads)")->check(CLI::Range(1, 4096));
-  cmd->add_option("--partition", o->partition, "sbatch --partition: NAME[,NAME...] of letters, digits, _ - .");
-  cmd->add_option("--account", o->account, "sbatch --account: a NAME of letters, digits, _ - .");
-  cmd->add_option("--time", o->time, "sbatch --time: MINUTES, [HOURS:]MINUTES:SECONDS or DAYS-HOURS[:MINUTES[:SECONDS]]");
-  cmd->add_option("--mem", o->mem, "sbatch --mem: a whole number with an optional unit K, M, G, T");
-  cmd->add_option("--job-name", o->job_name, "sbatch --job-name (default chaosweep-SPECNAME)");
-  cmd->add_flag("--submit", o->submit, "submit with sbatch (array, then the dependent merge job)");
-  cmd->add_flag("--force", o->force, "write over the scripts of an earlier `chaosweep slurm` in DIR");
-  cmd->callback([o, &action] {
-    action = [o]() -> int {
-      SweepSpec spec;
-      fs::path dir;
-      std::string job_name = o->job_name, extra;
-      try {
-        spec = load_sweep_spec(o->spec);
-        // Checked before anything is written: a bad value leaves no script behind.
-        if (o->tasks > spec.size())
-          throw BadSlurmValue("--tasks: " + std::to_string(o->tasks) + " is more than the spec's " +
-                              std::to_string(spec.size()) + " runs (a task runs at least one): give --tasks in [1, " +
-                              std::to_string(spec.size()) + "]");
-        if (job_name.empty()) job_name = to_slurm_job_name("chaosweep-" + spec.name);
-        require("--job-name", check_slurm_job_name(job_name));
-        if (!o->partition.empty()) require("--partition", check_slurm_partition(o->partition));
-        if (!o->account.empty()) require("--account", check_slurm_account(o->account));
-        if (!o->time.empty()) require("--time", check_slurm_time(o->time));
-        if (!o->mem.empty()) require("--mem", check_slurm_mem(o->mem));
-        dir = fs::absolute(o->dir);
-        require("-o", check_slurm_directive_path(dir.string()));
-        if (!o->force && fs::exists(dir / "cluster.toml"))
-          throw OutputExists("-o: " + o->dir + " already holds a chaosweep slurm sweep (cluster.toml); pass --force "
-                             "to write over its scripts (its shard files stay)");
-      } catch (const std::exception& e) {
-        std::cerr << "chaosweep slurm: " << e.what() << "\n";
-        return exit_bad_input;
-      }
-      try {
-        fs::create_directories(dir / "logs");
-        if (!o->partition.empty()) extra += "\n#SBATCH --partition=" + o->partition;
-        if (!o->account.empty()) extra += "\n#SBATCH --account=" + o->account;
-        if (!o->time.empty()) extra += "\n#SBATCH --time=" + o->time;
-        if (!o->mem.empty()) extra += "\n#SBATCH --mem=" + o->mem;
-        const std::string array =
-            "0-" + std::to_string(o->tasks - 1) + (o->concurrency > 0 ? "%" + std::to_string(o->concurrency) : "");
-        const std::string spec_path = fs::absolute(o->spec).string();
-        for (const char* name : {"sweep", "merge"}) {
-          const auto tmpl = embedded_file(std::string("cluster/") + name + ".sbatch.in");
-          if (!tmpl) throw std::runtime_error(std::string("no built-in template cluster/") + name + ".sbatch.in");
-          // #SBATCH lines take checked values only; shell lines take quoted ones.
-          const std::string text = fill_template(*tmpl, {{"JOB_NAME", job_name},
-                                                         {"ARRAY", array},
-                                                         {"LOGS", (dir / "logs").string()},
-                                                         {"CPUS", std::to_string(o->cpus)},
-                                                         {"EXTRA", extra},
-                                                         {"DIR", shell_quote(dir.string())},
-                                                         {"CHAOSWEEP", shell_quote(self_path())},
-                                                         {"SPEC", shell_quote(spec_path)},
-                                                         {"TASKS", std::to_string(o->tasks)}});
-          const fs::path out = dir / (std::string(name) + ".sbatch");
-          write_checked(out, text);
-          fs::permissions(out, fs::perms::owner_exec, fs::perm_options::add);
-        }
-        write_cluster_plan(dir, ClusterPlan{spec_path, spec.name, o->tasks, std::int64_t(spec.size())});
-        std::cout << "wrote " << (dir / "sweep.sbatch").string() << " (" << spec.size() << " runs in " << o->tasks
-                  << " shards, --array=" << array << ") and " << (dir / "merge.sbatch").string() << "\n";
-        if (!o->submit) return exit_ok;
-        const auto [rc, id] = capture("sbatch --parsable " + shell_quote((dir / "sweep.sbatch").string()));
-        if (rc != 0) throw std::runtime_error("sbatch failed for the array job");
-        const std::string job = job_id(id);
-        const auto [rc2, id2] = capture("sbatch --parsable --dependency=afterok:" + job + " " +
-                                        shell_quote((dir / "merge.sbatch").string()));
-        if (rc2 != 0) throw std::runtime_error("sbatch failed for the merge job");
-        std::cout << "submitted array job " << job << " and merge job " << job_id(id2) << "\n";
-        return exit_ok;
-      } catch (const std::exception& e) {
-        std::cerr << "chaosweep slurm: " << e.what() << "\n";
-        return exit_failure;
-      }
-    };
-  });
-
-  auto* st = app.add_subcommand("status", "Which shards of a `chaosweep slurm` directory are finished, partial or missing");
-  st->footer(
-      "Prints one line per shard state and the --array= list of the shards to resubmit\n"
-      "(partial, missing or damaged: a shard file that cannot be read, named with the reason;\n"
-      "remove it before resubmitting): sbatch --array=LIST DIR/sweep.sbatch. Exit 0 when every\n"
-      "shard is finished, 1 otherwise.");
-  auto dir = std::make_shared<std::string>();
-  st->add_option("dir", *dir, "directory written by chaosweep slurm")->required()->check(CLI::ExistingDirectory);
-  st->callback([dir, &action] {
-    action = [dir]() -> int {
-      try {
-        const ClusterPlan plan = read_cluster_plan(*dir);
-        std::vector<int> finished, partial, missing, damaged;
-        std::string detail, broken;
-        for (int k = 0; k < plan.tasks; ++k) {
-          const fs::path file = shard_file(*dir, k);
-          const std::string part = file.string() + ".partial";
-          const std::int64_t want = shard_size(plan.runs, k, plan.tasks);
-          std::error_code ec;
-          // A file that cannot be read is damaged: listed, and resubmitted once moved away.
-          std::string why;
-          auto rows_of = [&](const std::string& p) -> std::int64_t {
-            try {
-              return count_rows(p);
-            } catch (const std::exception& e) {
-              why = e.what();
-              return -1;
-            }
-          };
-          const std::string name = "  shard " + std::to_string(k) + ": ";
-          if (fs::exists(fs::symlink_status(file, ec))) {
-            const std::int64_t have = rows_of(file.string());
-            if (have == want) {
-              finished.push_back(k);
-              continue;
-            }
-            damaged.push_back(k);
-            broken += name + (have < 0 ? why : file.string() + " holds " + std::to_string(have) + " rows, not " +
-                                                   std::to_string(want)) +
-                      "; remove it, then resubmit\n";
-          } else if (fs::exists(fs::symlink_status(part, ec))) {
-            const std::int64_t have = rows_of(part);
-            if (have < 0) {
-              damaged.push_back(k);
-              broken += name + why + "; remove it, then resubmit\n";
-              continue;
-            }
-            partial.push_back(k);
-            detail += name + std::to_string(have) + " of " + std::to_string(want) + " runs\n";
-          } else {
-            missing.push_back(k);
-          }
-        }
-        auto list = [](const std::vector<int>& v) {
-          std::string s;
-          for (int k : v) s += (s.empty() ? "" : ",") + std::to_string(k);
-          return s.empty() ? std::string("-") : s;
-        };
-        std::cout << "sweep '" << plan.name << "': " << plan.tasks << " shards, " << plan.runs << " runs\n"
-                  << "finished " << finished.size() << ": " << list(finished) << "\n"
-                  << "partial  " << partial.size() << ": " << list(partial) << "\n" << detail
-                  << "missing  " << missing.size() << ": " << list(missing) << "\n";
-        if (!damaged.empty()) std::cout << "damaged  " << damaged.size() << ": " << list(damaged) << "\n" << broken;
-        std::vector<int> redo = partial;
-        redo.insert(redo.end(), missing.begin(), missing.end());
-        redo.insert(redo.end(), damaged.begin(), damaged.end());
-        std::sort(redo.begin(), redo.end());
-        if (redo.empty()) {
-          std::cout << "all shards finished; merge: sbatch " << (fs::path(*dir) / "merge.sbatch").string() << "\n";
-          return exit_ok;
-        }
-        std::cout << "resubmit: --array=" << list(redo) << "\n  sbatch --array=" << list(redo) << " "
-                  << (fs::path(*dir) / "sweep.sbatch").string() << "\n";
-        return 1;
-      } catch (const std::exception& e) {
-        std::cerr << "chaosweep status: " << e.what() << "\n";
-        return exit_bad_input;
-      }
-    };
-  });
+  auto o = std::make_shared<SlurmOptions>();
+  add_slurm_flags(*cmd, *o);
+  cmd->callback([o, &action] { action = [o] { return run_slurm(*o); }; });
+  add_status_command(app, action);
 }
 
 }  // namespace chaosweep

@@ -9,6 +9,7 @@
 #include "engine/spec/toml.hpp"
 
 #include "kernels/core/clutter.hpp"
+#include "kernels/core/param_table.hpp"
 #include "engine/spec/input_file.hpp"
 #include "engine/rows/run_hash.hpp"
 #include "engine/spec/embedded_files.hpp"
@@ -19,13 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A number for messages ("0.3", "12", "inf", "nan"); local so that the fuzz
-// target builds from this file's few dependencies.
-std::string format_number(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
+// A number for messages, to 6 significant digits ("9.6" for the relative
+// 0.8 of a 12 m map, not 9.600000000000001; "inf", "nan").
+std::string shown(double v) { return format_number(v, 6); }
 
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
   throw std::runtime_error("environment " + file + ": " + what);
@@ -39,7 +36,7 @@ double number(const toml::node& n, const std::string& file, const std::string& k
 // A number that must be finite (TOML has nan and inf literals).
 double finite_number(const toml::node& n, const std::string& file, const std::string& key) {
   const double v = number(n, file, key);
-  if (!std::isfinite(v)) fail(file, "'" + key + "' = " + format_number(v) + " must be a finite number");
+  if (!std::isfinite(v)) fail(file, "'" + key + "' = " + shown(v) + " must be a finite number");
   return v;
 }
 
@@ -55,16 +52,15 @@ std::pair<double, double> pair_of(const toml::node& n, const std::string& file, 
 
 // "[0, 10] x [0, 10] m": the map's extent, for messages.
 std::string map_bounds(const Environment& env) {
-  return "[0, " + format_number(env.lx) + "] x [0, " + format_number(env.ly) + "] m";
+  return "[0, " + shown(env.lx) + "] x [0, " + shown(env.ly) + "] m";
 }
 
-Environment parse_text(const std::string& text, const std::string& path, double size_x, double size_y,
-                       std::optional<std::uint64_t> clutter_seed) {
-  toml::table t;
+toml::table parse_toml(const std::string& text, const std::string& path) {
   try {
     check_toml_text(text);
-    t = toml::parse(text, path);
+    toml::table t = toml::parse(text, path);
     check_toml_integers(t);
+    return t;
   } catch (const TomlInputError& e) {
     fail(path, e.what());
   } catch (const toml::parse_error& e) {
@@ -72,8 +68,11 @@ Environment parse_text(const std::string& text, const std::string& path, double 
     os << e.description() << " at line " << e.source().begin.line;
     fail(path, os.str());
   }
-  Environment env;
-  env.name = fs::path(path).stem().string();
+}
+
+// The top-level keys: the name, the units (returns whether they are
+// relative), and no key outside the allowed ones.
+bool read_name_and_units(const toml::table& t, const std::string& path, Environment& env) {
   bool relative = true;
   for (auto&& [k, node] : t) {
     const std::string key(k.str());
@@ -92,120 +91,161 @@ Environment parse_text(const std::string& text, const std::string& path, double 
                      "clutter)");
     }
   }
+  return relative;
+}
+
+void read_size(const toml::table& t, const std::string& path, bool relative, double size_x, double size_y,
+               Environment& env) {
   if (const toml::node* s = t.get("size")) {
     std::tie(env.lx, env.ly) = pair_of(*s, path, "size");
     if (!(env.lx > 0 && env.ly > 0))
-      fail(path, "'size' = " + format_number(env.lx) + " x " + format_number(env.ly) + " must be positive");
+      fail(path, "'size' = " + shown(env.lx) + " x " + shown(env.ly) + " must be positive");
   } else if (!relative) {
     fail(path, "'size' is required when units = \"m\"");
   } else {
     env.lx = size_x;
     env.ly = size_y;
   }
+}
+
+void read_start(const toml::table& t, const std::string& path, bool relative, Environment& env) {
+  const toml::node* s = t.get("start");
+  if (!s) return;
+  auto [x, y] = pair_of(*s, path, "start");
+  bool start_m = !relative;
+  if (const toml::node* su = t.get("start_units")) {
+    const auto u = su->value<std::string>();
+    if (!u || (*u != "relative" && *u != "m")) fail(path, "'start_units' must be \"relative\" or \"m\"");
+    start_m = *u == "m";
+  }
+  env.start = start_m ? std::pair{x, y} : std::pair{x * env.lx, y * env.ly};
+}
+
+// obstacles[i] = {x, y, w, h}, in metres (sx, sy: the map side per unit).
+Rect read_obstacle(const toml::node& node, const std::string& path, const std::string& where, double sx, double sy) {
+  const toml::table* r = node.as_table();
+  if (!r) fail(path, where + " must be a table {x, y, w, h}");
+  double v[4];
+  const char* names[4] = {"x", "y", "w", "h"};
+  for (int j = 0; j < 4; ++j) {
+    const toml::node* n = r->get(names[j]);
+    if (!n) fail(path, where + " lacks '" + names[j] + "'");
+    v[j] = finite_number(*n, path, where + "." + names[j]);
+  }
+  for (auto&& [k, value] : *r) {
+    (void)value;
+    const std::string key(k.str());
+    if (key != "x" && key != "y" && key != "w" && key != "h")
+      fail(path, where + " has unknown key '" + key + "' (allowed: x, y, w, h)");
+  }
+  if (!(v[2] > 0 && v[3] > 0)) fail(path, where + ": w and h must be positive");
+  return Rect{v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy};
+}
+
+void read_obstacles(const toml::table& t, const std::string& path, bool relative, Environment& env) {
+  const toml::node* o = t.get("obstacles");
+  if (!o) return;
   const double sx = relative ? env.lx : 1.0, sy = relative ? env.ly : 1.0;
+  const toml::array* arr = o->as_array();
+  if (!arr) fail(path, "'obstacles' must be an array of {x, y, w, h} tables");
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const std::string where = "obstacles[" + std::to_string(i) + "]";
+    const Rect rect = read_obstacle(*arr->get(i), path, where, sx, sy);
+    // Every obstacle lies within the map (touching its edge is fine; a
+    // relative 0.7 + 0.3 may round above 1, hence the tolerance). Overlapping
+    // obstacles are fine: the map is their union (docs/inputs.md).
+    const double tol_x = 1e-9 * env.lx, tol_y = 1e-9 * env.ly;
+    if (!(rect.x0 >= -tol_x && rect.y0 >= -tol_y && rect.x1 <= env.lx + tol_x && rect.y1 <= env.ly + tol_y)) {
+      const bool wholly = rect.x0 >= env.lx || rect.y0 >= env.ly || rect.x1 <= 0 || rect.y1 <= 0;
+      fail(path, where + " spans [" + shown(rect.x0) + ", " + shown(rect.x1) + "] x [" + shown(rect.y0) + ", " +
+                     shown(rect.y1) + "] m: " + (wholly ? "it lies outside" : "it reaches outside") + " the map " +
+                     map_bounds(env) +
+                     (relative ? " (units = \"relative\": need 0 <= x, x + w <= 1, 0 <= y, y + h <= 1)" : ""));
+    }
+    env.obstacles.push_back(rect);
+  }
+}
 
-  if (const toml::node* s = t.get("start")) {
-    auto [x, y] = pair_of(*s, path, "start");
-    bool start_m = !relative;
-    if (const toml::node* su = t.get("start_units")) {
-      const auto u = su->value<std::string>();
-      if (!u || (*u != "relative" && *u != "m")) fail(path, "'start_units' must be \"relative\" or \"m\"");
-      start_m = *u == "m";
+// The clutter table's values, in metres (`unit`: metres per unit).
+ClutterSpec read_clutter_table(const toml::table& ct, const std::string& path, bool relative, double unit) {
+  ClutterSpec spec;
+  spec.min_side = 0.03 * (relative ? unit : 50.0);
+  spec.max_side = 0.08 * (relative ? unit : 50.0);
+  spec.gap = 0.02 * (relative ? unit : 50.0);
+  for (auto&& [k, node] : ct) {
+    const std::string key(k.str()), where = "clutter." + key;
+    const double v = number(node, path, where);
+    if (key == "seed") {
+      if (!(v >= 0 && v == std::floor(v))) fail(path, where + " must be a whole number >= 0");
+      spec.seed = std::uint64_t(v);
+    } else if (key == "occupancy") {
+      if (!(v >= 0 && v <= 0.6)) fail(path, where + " must be in [0, 0.6]");
+      spec.occupancy = v;
+    } else if (key == "min_side" || key == "max_side" || key == "gap") {
+      if (!(v >= 0)) fail(path, where + " must be >= 0");
+      (key == "min_side" ? spec.min_side : key == "max_side" ? spec.max_side : spec.gap) = v * unit;
+    } else {
+      fail(path, "unknown key '" + where + "' (allowed: seed, occupancy, min_side, max_side, gap)");
     }
-    env.start = start_m ? std::pair{x, y} : std::pair{x * env.lx, y * env.ly};
   }
+  return spec;
+}
 
-  if (const toml::node* o = t.get("obstacles")) {
-    const toml::array* arr = o->as_array();
-    if (!arr) fail(path, "'obstacles' must be an array of {x, y, w, h} tables");
-    for (std::size_t i = 0; i < arr->size(); ++i) {
-      const std::string where = "obstacles[" + std::to_string(i) + "]";
-      const toml::table* r = arr->get(i)->as_table();
-      if (!r) fail(path, where + " must be a table {x, y, w, h}");
-      double v[4];
-      const char* names[4] = {"x", "y", "w", "h"};
-      for (int j = 0; j < 4; ++j) {
-        const toml::node* n = r->get(names[j]);
-        if (!n) fail(path, where + " lacks '" + names[j] + "'");
-        v[j] = finite_number(*n, path, where + "." + names[j]);
-      }
-      for (auto&& [k, node] : *r) {
-        (void)node;
-        const std::string key(k.str());
-        if (key != "x" && key != "y" && key != "w" && key != "h")
-          fail(path, where + " has unknown key '" + key + "' (allowed: x, y, w, h)");
-      }
-      if (!(v[2] > 0 && v[3] > 0)) fail(path, where + ": w and h must be positive");
-      const Rect rect{v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy};
-      // Every obstacle lies within the map (touching its edge is fine; a
-      // relative 0.7 + 0.3 may round above 1, hence the tolerance). Overlapping
-      // obstacles are fine: the map is their union (docs/inputs.md).
-      const double tol_x = 1e-9 * env.lx, tol_y = 1e-9 * env.ly;
-      if (!(rect.x0 >= -tol_x && rect.y0 >= -tol_y && rect.x1 <= env.lx + tol_x && rect.y1 <= env.ly + tol_y)) {
-        const bool wholly = rect.x0 >= env.lx || rect.y0 >= env.ly || rect.x1 <= 0 || rect.y1 <= 0;
-        fail(path, where + " spans [" + format_number(rect.x0) + ", " + format_number(rect.x1) + "] x [" +
-                       format_number(rect.y0) + ", " + format_number(rect.y1) + "] m: " +
-                       (wholly ? "it lies outside" : "it reaches outside") + " the map " + map_bounds(env) +
-                       (relative ? " (units = \"relative\": need 0 <= x, x + w <= 1, 0 <= y, y + h <= 1)" : ""));
-      }
-      env.obstacles.push_back(rect);
-    }
+// Clutter the generator can place in this map.
+void check_clutter(const ClutterSpec& spec, const std::string& path, const Environment& env) {
+  if (!(spec.min_side > 0 && spec.max_side >= spec.min_side)) fail(path, "clutter needs 0 < min_side <= max_side");
+  if (!(spec.max_side + 2 * spec.gap < std::min(env.lx, env.ly)))
+    fail(path, "clutter.max_side + 2 gap = " + shown(spec.max_side + 2 * spec.gap) + " m does not fit in the map (" +
+                   shown(env.lx) + " x " + shown(env.ly) + " m)");
+  // Squares so small that the occupancy needs more of them than the
+  // generator tries are a typo (1e-9 for 0.1), not a map.
+  const double most = spec.occupancy * env.lx * env.ly / (spec.min_side * spec.min_side);
+  if (most > max_clutter_attempts)
+    fail(path, "clutter.occupancy = " + shown(spec.occupancy) + " with squares of min_side = " +
+                   shown(spec.min_side) + " m takes up to " + shown(most) + " squares (more than " +
+                   std::to_string(max_clutter_attempts) +
+                   ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
+}
+
+void read_clutter(const toml::table& t, const std::string& path, bool relative,
+                  std::optional<std::uint64_t> clutter_seed, Environment& env) {
+  const toml::node* c = t.get("clutter");
+  if (!c) {
+    if (clutter_seed) fail(path, "':SEED' is only for environments with a 'clutter' table");
+    return;
   }
-  if (const toml::node* c = t.get("clutter")) {
-    const toml::table* ct = c->as_table();
-    if (!ct) fail(path, "'clutter' must be a table {seed, occupancy, min_side, max_side, gap}");
-    ClutterSpec spec;
-    const double unit = relative ? std::min(env.lx, env.ly) : 1.0;
-    spec.min_side = 0.03 * (relative ? unit : 50.0);
-    spec.max_side = 0.08 * (relative ? unit : 50.0);
-    spec.gap = 0.02 * (relative ? unit : 50.0);
-    for (auto&& [k, node] : *ct) {
-      const std::string key(k.str()), where = "clutter." + key;
-      const double v = number(node, path, where);
-      if (key == "seed") {
-        if (!(v >= 0 && v == std::floor(v))) fail(path, where + " must be a whole number >= 0");
-        spec.seed = std::uint64_t(v);
-      } else if (key == "occupancy") {
-        if (!(v >= 0 && v <= 0.6)) fail(path, where + " must be in [0, 0.6]");
-        spec.occupancy = v;
-      } else if (key == "min_side" || key == "max_side" || key == "gap") {
-        if (!(v >= 0)) fail(path, where + " must be >= 0");
-        (key == "min_side" ? spec.min_side : key == "max_side" ? spec.max_side : spec.gap) = v * unit;
-      } else {
-        fail(path, "unknown key '" + where + "' (allowed: seed, occupancy, min_side, max_side, gap)");
-      }
-    }
-    if (!(spec.min_side > 0 && spec.max_side >= spec.min_side))
-      fail(path, "clutter needs 0 < min_side <= max_side");
-    if (!(spec.max_side + 2 * spec.gap < std::min(env.lx, env.ly)))
-      fail(path, "clutter.max_side + 2 gap = " + format_number(spec.max_side + 2 * spec.gap) +
-                     " m does not fit in the map (" + format_number(env.lx) + " x " + format_number(env.ly) + " m)");
-    // Squares so small that the occupancy needs more of them than the
-    // generator tries are a typo (1e-9 for 0.1), not a map.
-    const double most = spec.occupancy * env.lx * env.ly / (spec.min_side * spec.min_side);
-    if (most > max_clutter_attempts)
-      fail(path, "clutter.occupancy = " + format_number(spec.occupancy) + " with squares of min_side = " +
-                     format_number(spec.min_side) + " m takes up to " + format_number(most) + " squares (more than " +
-                     std::to_string(max_clutter_attempts) +
-                     ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
-    if (clutter_seed) spec.seed = *clutter_seed;
-    const auto start = env.start.value_or(std::pair{0.5, 0.5});
-    for (const Rect& r : generate_clutter(env.lx, env.ly, spec, start.first, start.second))
-      env.obstacles.push_back(r);
-    env.name += ":" + std::to_string(spec.seed);
-  } else if (clutter_seed) {
-    fail(path, "':SEED' is only for environments with a 'clutter' table");
-  }
+  const toml::table* ct = c->as_table();
+  if (!ct) fail(path, "'clutter' must be a table {seed, occupancy, min_side, max_side, gap}");
+  ClutterSpec spec = read_clutter_table(*ct, path, relative, relative ? std::min(env.lx, env.ly) : 1.0);
+  check_clutter(spec, path, env);
+  if (clutter_seed) spec.seed = *clutter_seed;
+  const auto start = env.start.value_or(std::pair{0.5, 0.5});
+  for (const Rect& r : generate_clutter(env.lx, env.ly, spec, start.first, start.second)) env.obstacles.push_back(r);
+  env.name += ":" + std::to_string(spec.seed);
+}
+
+// The file's own start must be a place a run can start from (a run's own
+// start, which wins over it, is checked when the run starts).
+void check_start(const std::string& path, const Environment& env) {
+  if (!env.start) return;
+  const auto [x, y] = *env.start;
+  const std::string at = "'start' = (" + shown(x) + ", " + shown(y) + ") m";
+  if (x < 0 || x > env.lx || y < 0 || y > env.ly) fail(path, at + " is outside the map " + map_bounds(env));
+  if (const int k = env.obstacle_at(x, y); k >= 0) fail(path, at + " lies inside obstacles[" + std::to_string(k) + "]");
+}
+
+Environment parse_text(const std::string& text, const std::string& path, double size_x, double size_y,
+                       std::optional<std::uint64_t> clutter_seed) {
+  const toml::table t = parse_toml(text, path);
+  Environment env;
+  env.name = fs::path(path).stem().string();
+  const bool relative = read_name_and_units(t, path, env);
+  read_size(t, path, relative, size_x, size_y, env);
+  read_start(t, path, relative, env);
+  read_obstacles(t, path, relative, env);
+  read_clutter(t, path, relative, clutter_seed, env);
   env.index_obstacles();
-  // The file's own start must be a place a run can start from (a run's own
-  // start, which wins over it, is checked when the run starts).
-  if (env.start) {
-    const auto [x, y] = *env.start;
-    const std::string at = "'start' = (" + format_number(x) + ", " + format_number(y) + ") m";
-    if (x < 0 || x > env.lx || y < 0 || y > env.ly) fail(path, at + " is outside the map " + map_bounds(env));
-    if (const int k = env.obstacle_at(x, y); k >= 0)
-      fail(path, at + " lies inside obstacles[" + std::to_string(k) + "]");
-  }
+  check_start(path, env);
   return env;
 }
 

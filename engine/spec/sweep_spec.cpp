@@ -623,9 +623,10 @@ SpecPart parse_part(const toml::table& t, std::size_t index, const std::string& 
 namespace {
 
 SweepSpec parse_spec(const std::string& text, const std::string& source_name, const std::string& dir,
-                     ExtendsChain& chain) {
-  toml::table root = parse_toml(text, source_name);
-  SweepSpec spec;
+                     ExtendsChain& chain);
+
+// The top-level sections are known and of the right kind, and they set something.
+void check_sections(const toml::table& root, const std::string& source_name) {
   for (auto&& [k, node] : root) {
     const std::string key(k.str());
     if (key == "zip" || key == "case" || key == "part") {
@@ -647,104 +648,146 @@ SweepSpec parse_spec(const std::string& text, const std::string& source_name, co
   if (empty)
     fail(source_name, "the spec is empty (it sets nothing): it would be one run of the default parameters; give "
                       "[fixed] settings, [axes] or sweep.extends");
+}
+
+void check_sweep_keys(const toml::table& s, const std::string& source_name) {
+  for (auto&& [k, node] : s) {
+    const std::string key(k.str());
+    if (key == "name" || key == "description" || key == "extends") {
+      if (!node.is_string()) fail(source_name, "sweep." + key + " must be a string");
+    } else {
+      fail(source_name, "unknown key 'sweep." + key + "' (allowed: name, description, extends)");
+    }
+  }
+}
+
+// The spec named by sweep.extends (`extends`, relative to `dir`), parsed; a
+// chain that comes back to one of its specs would recurse forever.
+SweepSpec parse_extended(const std::string& extends, const std::string& source_name, const std::string& dir,
+                         ExtendsChain& chain) {
+  const std::string path = extends.starts_with("/") ? extends : dir + "/" + extends;
+  const ChainLink link = link_of(path);
+  for (std::size_t k = 0; k < chain.size(); ++k) {
+    if (chain[k].canonical != link.canonical) continue;
+    if (k + 1 == chain.size())
+      fail(source_name + ": sweep.extends", "\"" + extends + "\" is this spec itself: a spec cannot extend itself");
+    std::string cycle;
+    for (std::size_t j = k; j < chain.size(); ++j) cycle += chain[j].name + " -> ";
+    fail(source_name + ": sweep.extends", "\"" + extends + "\" makes a cycle of extended specs: " + cycle + path);
+  }
+  const std::string parent_text = read_text(path, "the spec named by sweep.extends");
+  const auto slash = path.find_last_of('/');
+  chain.push_back(link);
+  SweepSpec parent = parse_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash), chain);
+  chain.pop_back();
+  parent.files.insert(parent.files.begin(), InputRecord{path, fnv1a64(parent_text)});
+  return parent;
+}
+
+// Starts `spec` from the extended one: its fixed settings, axes and parts
+// come first. `used` gets the keys its axes set; `part_keys` those its
+// parts set (the top level must not set them too).
+void extend_from(SweepSpec& spec, const SweepSpec& parent, const std::string& extends, const toml::table& root,
+                 const std::string& source_name, UsedKeys& used, UsedKeys& part_keys) {
+  spec.files.insert(spec.files.end(), parent.files.begin(), parent.files.end());
+  if (parent.repeat && root["repeat"]) fail(source_name + ": repeat", "the extended spec has a [repeat] already");
+  spec.base = parent.base;
+  spec.axes = parent.axes;
+  spec.parts = parent.parts;
+  spec.repeat = parent.repeat;
+  spec.master_seed = parent.master_seed;
+  for (const Axis& a : parent.axes)
+    for (const std::string& key : a.keys) used.emplace(key, KeyUse{"an axis of the extended spec", true, false});
+  for (const SpecPart& p : parent.parts) {
+    const KeyUse use{"part \"" + p.name + "\" of the extended spec", false, true};
+    for (const auto& [key, value] : p.fixed) part_keys.emplace(key, use);
+    for (const Axis& a : p.axes)
+      for (const std::string& key : a.keys) part_keys.emplace(key, use);
+  }
+  if (spec.description.empty()) spec.description = parent.description;
+  spec.text = "# --- extends " + extends + " ---\n" + parent.text + "# --- " + source_name + " ---\n";
+}
+
+// [fixed]: settings of the base run; each key set in one place only.
+void read_fixed(const toml::table& f, const std::string& source_name, SweepSpec& spec, UsedKeys& top) {
+  for (auto&& [k, node] : f) {
+    const std::string key(k.str());
+    const std::string where = source_name + ": fixed." + key;
+    if (const auto it = top.find(key); it != top.end())
+      fail(where, "is also set by " + it->second.origin + "; give it in one place");
+    const SpecValue v = to_value(node, where);  // its errors name `where` already
+    try {
+      apply_setting(spec.base, key, v);
+    } catch (const SpecError& e) {
+      fail(where, e.what());
+    }
+  }
+  for (auto&& [k, node] : f) {
+    const std::string key(k.str());
+    top.emplace(key, KeyUse{"fixed." + key, false, false});
+  }
+}
+
+// [repeat]: count runs of each point, every run's seed from the run_id.
+void read_repeat(const toml::table& t, const std::string& source_name, SweepSpec& spec, UsedKeys& top,
+                 OrderedAxes& ordered) {
+  const std::string where = source_name + ": repeat";
+  if (top.count("seed")) fail(where, "sets every run's seed: 'seed' must not be given elsewhere");
+  top.emplace("seed", KeyUse{"repeat", true, false});
+  std::int64_t count = 0;
+  for (auto&& [k, node] : t) {
+    const std::string key(k.str());
+    const auto v = node.value<double>();
+    if (!v || !(*v >= 0 && *v == std::floor(*v) && *v < 9.007199254740992e15))
+      fail(where + "." + key, "must be a whole number >= 0");
+    if (key == "count") count = std::int64_t(*v);
+    else if (key == "seed") spec.master_seed = std::uint64_t(*v);
+    else fail(where, "unknown key '" + key + "' (allowed: count, seed)");
+  }
+  if (count < 1 || count > 100000000) fail(where + ".count", "must be in [1, 1e8]");
+  spec.repeat = true;
+  // Its positions set nothing themselves (the seed comes from the run_id):
+  // a sampler of no dimensions, so count costs no memory.
+  auto positions = std::make_shared<Sampler>();
+  positions->n = count;
+  Axis axis{"repeat", {"seed"}, {}, std::move(positions)};
+  ordered.emplace_back(t.source().begin.line, std::move(axis));
+}
+
+void check_run_count(const SweepSpec& spec, const std::string& source_name) {
+  double total = 0, shared = 1;
+  for (const Axis& a : spec.axes) shared *= double(a.size());
+  for (const SpecPart& p : spec.parts) {
+    double own = 1;
+    for (const Axis& a : p.axes) own *= double(a.size());
+    total += own * shared;
+  }
+  if (spec.parts.empty()) total = shared;
+  if (total > max_runs) fail(source_name, "expands to " + fmt(total) + " runs (more than 1e12)");
+}
+
+SweepSpec parse_spec(const std::string& text, const std::string& source_name, const std::string& dir,
+                     ExtendsChain& chain) {
+  toml::table root = parse_toml(text, source_name);
+  check_sections(root, source_name);
+  SweepSpec spec;
   UsedKeys used;  // keys set outside parts, and where
   // Keys the extended spec's parts set: the top level must not set them too.
   UsedKeys inherited_part_keys;
   if (const toml::table* s = root["sweep"].as_table()) {
-    for (auto&& [k, node] : *s) {
-      const std::string key(k.str());
-      if (key == "name" || key == "description" || key == "extends") {
-        if (!node.is_string()) fail(source_name, "sweep." + key + " must be a string");
-      } else {
-        fail(source_name, "unknown key 'sweep." + key + "' (allowed: name, description, extends)");
-      }
-    }
+    check_sweep_keys(*s, source_name);
     if (auto n = (*s)["name"].value<std::string>()) spec.name = *n;
     if (auto d = (*s)["description"].value<std::string>()) spec.description = *d;
-    if (auto e = (*s)["extends"].value<std::string>()) {
-      // Start from another spec: its fixed settings, axes and parts come first.
-      const std::string path = e->starts_with("/") ? *e : dir + "/" + *e;
-      // A chain that comes back to one of its specs would recurse forever.
-      const ChainLink link = link_of(path);
-      for (std::size_t k = 0; k < chain.size(); ++k) {
-        if (chain[k].canonical != link.canonical) continue;
-        if (k + 1 == chain.size()) fail(source_name + ": sweep.extends", "\"" + *e + "\" is this spec itself: a spec cannot extend itself");
-        std::string cycle;
-        for (std::size_t j = k; j < chain.size(); ++j) cycle += chain[j].name + " -> ";
-        fail(source_name + ": sweep.extends", "\"" + *e + "\" makes a cycle of extended specs: " + cycle + path);
-      }
-      const std::string parent_text = read_text(path, "the spec named by sweep.extends");
-      const auto slash = path.find_last_of('/');
-      chain.push_back(link);
-      SweepSpec parent = parse_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash), chain);
-      chain.pop_back();
-      spec.files.push_back({path, fnv1a64(parent_text)});
-      spec.files.insert(spec.files.end(), parent.files.begin(), parent.files.end());
-      if (parent.repeat && root["repeat"]) fail(source_name + ": repeat", "the extended spec has a [repeat] already");
-      spec.base = parent.base;
-      spec.axes = parent.axes;
-      spec.parts = parent.parts;
-      spec.repeat = parent.repeat;
-      spec.master_seed = parent.master_seed;
-      for (const Axis& a : parent.axes)
-        for (const std::string& key : a.keys) used.emplace(key, KeyUse{"an axis of the extended spec", true, false});
-      for (const SpecPart& p : parent.parts) {
-        const KeyUse use{"part \"" + p.name + "\" of the extended spec", false, true};
-        for (const auto& [key, value] : p.fixed) inherited_part_keys.emplace(key, use);
-        for (const Axis& a : p.axes)
-          for (const std::string& key : a.keys) inherited_part_keys.emplace(key, use);
-      }
-      if (spec.description.empty()) spec.description = parent.description;
-      spec.text = "# --- extends " + *e + " ---\n" + parent.text + "# --- " + source_name + " ---\n";
-    }
+    if (auto e = (*s)["extends"].value<std::string>())
+      extend_from(spec, parse_extended(*e, source_name, dir, chain), *e, root, source_name, used, inherited_part_keys);
   }
   spec.text += text;
   UsedKeys top = used;  // what the top level claims, checked against the inherited parts too
   top.insert(inherited_part_keys.begin(), inherited_part_keys.end());
-
-  if (const toml::table* f = root["fixed"].as_table()) {
-    for (auto&& [k, node] : *f) {
-      const std::string key(k.str());
-      const std::string where = source_name + ": fixed." + key;
-      if (const auto it = top.find(key); it != top.end())
-        fail(where, "is also set by " + it->second.origin + "; give it in one place");
-      const SpecValue v = to_value(node, where);  // its errors name `where` already
-      try {
-        apply_setting(spec.base, key, v);
-      } catch (const SpecError& e) {
-        fail(where, e.what());
-      }
-    }
-    for (auto&& [k, node] : *f) {
-      const std::string key(k.str());
-      top.emplace(key, KeyUse{"fixed." + key, false, false});
-    }
-  }
+  if (const toml::table* f = root["fixed"].as_table()) read_fixed(*f, source_name, spec, top);
   OrderedAxes ordered;
   parse_axis_sections(root, source_name + ": ", "", false, spec.base, top, ordered);
-  if (const toml::table* t = root["repeat"].as_table()) {
-    const std::string where = source_name + ": repeat";
-    if (top.count("seed")) fail(where, "sets every run's seed: 'seed' must not be given elsewhere");
-    top.emplace("seed", KeyUse{"repeat", true, false});
-    std::int64_t count = 0;
-    for (auto&& [k, node] : *t) {
-      const std::string key(k.str());
-      const auto v = node.value<double>();
-      if (!v || !(*v >= 0 && *v == std::floor(*v) && *v < 9.007199254740992e15))
-        fail(where + "." + key, "must be a whole number >= 0");
-      if (key == "count") count = std::int64_t(*v);
-      else if (key == "seed") spec.master_seed = std::uint64_t(*v);
-      else fail(where, "unknown key '" + key + "' (allowed: count, seed)");
-    }
-    if (count < 1 || count > 100000000) fail(where + ".count", "must be in [1, 1e8]");
-    spec.repeat = true;
-    // Its positions set nothing themselves (the seed comes from the run_id):
-    // a sampler of no dimensions, so count costs no memory.
-    auto positions = std::make_shared<Sampler>();
-    positions->n = count;
-    Axis axis{"repeat", {"seed"}, {}, std::move(positions)};
-    ordered.emplace_back(t->source().begin.line, std::move(axis));
-  }
+  if (const toml::table* t = root["repeat"].as_table()) read_repeat(*t, source_name, spec, top, ordered);
   for (Axis& a : in_file_order(std::move(ordered))) spec.axes.push_back(std::move(a));
 
   if (const toml::array* parts = root["part"].as_array()) {
@@ -756,16 +799,7 @@ SweepSpec parse_spec(const std::string& text, const std::string& source_name, co
       names.push_back(spec.parts.back().name);
     }
   }
-
-  double total = 0, shared = 1;
-  for (const Axis& a : spec.axes) shared *= double(a.size());
-  for (const SpecPart& p : spec.parts) {
-    double own = 1;
-    for (const Axis& a : p.axes) own *= double(a.size());
-    total += own * shared;
-  }
-  if (spec.parts.empty()) total = shared;
-  if (total > max_runs) fail(source_name, "expands to " + fmt(total) + " runs (more than 1e12)");
+  check_run_count(spec, source_name);
   return spec;
 }
 

@@ -138,11 +138,15 @@ std::vector<ParamInfo> make_table() {
 
 }  // namespace
 
-std::string format_number(double v) {
+std::string format_number(double v, int significant) {
+  char buf[32];
+  if (significant > 0) {  // as printf("%.*g"), which spells nan and inf with their sign
+    const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, significant);
+    return std::string(buf, res.ptr);
+  }
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[32];  // the shortest text that reads back to the same double
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);  // the shortest text that reads back to the same double
   return std::string(buf, res.ptr);
 }
 

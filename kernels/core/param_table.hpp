@@ -35,8 +35,11 @@ const ParamInfo* find_param(std::string_view name);
 // A number in its shortest round-trip form (std::to_chars): the fewest
 // digits that read back as the same double ("0.3", "0.30000000000000004",
 // "1e+06", "nan", "inf"). Every parameter chaosweep prints goes through it,
-// so a printed value typed back in is the value that was used.
-std::string format_number(double v);
+// so a printed value typed back in is the value that was used. With
+// `significant` > 0, printf's %g of that many digits instead ("9.6" for
+// 0.8 * 12, which reads back as 9.600000000000001): for messages that show
+// computed positions, where the last bits are noise to the reader.
+std::string format_number(double v, int significant = 0);
 
 // First out-of-range parameter, as a message; empty when all are in range.
 std::string check_ranges(const RunParams& p);

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds a libFuzzer target with clang (Debian clang-14, libclang-rt-14-dev)
-# under ASan+UBSan and runs it for a bounded time on a copy of its corpus
-# (tests/fuzz/corpus_<name>; new inputs stay in the temp copy).
+# under ASan+UBSan and runs it for a bounded time on a temporary corpus (new
+# inputs stay there): the hand-written seeds of tests/fuzz/corpus_<dir> and,
+# for the parsers, the shipped inputs (experiments/*.toml, experiments/envs/
+# *.toml), read at run time so that no copy of them goes stale.
 #   run_fuzz.sh NAME SECONDS SOURCE|FLAG...  exit 0 clean, 1 a finding, 77 no clang
 # (a SOURCE is relative to the source tree, or an absolute path ending in .cpp,
 # e.g. a generated file; other arguments starting with - or / are compiler
@@ -30,7 +32,17 @@ done
   -I"$root" \
   "$here/fuzz_$name.cpp" "${srcs[@]}" ${flags[@]+"${flags[@]}"} -o "$work/fuzz_$name"
 mkdir -p "$work/corpus"
-cp "$here/corpus_$name"/* "$work/corpus/" 2>/dev/null || true
+shopt -s nullglob
+case $name in
+  sweep_spec) seeds=("$here"/corpus_spec/* "$root"/experiments/*.toml) ;;
+  environment) seeds=("$here"/corpus_env/* "$root"/experiments/envs/*.toml) ;;
+  *) seeds=("$here/corpus_$name"/*) ;;
+esac
+if ((${#seeds[@]} == 0)); then
+  echo "run_fuzz: no seed inputs for $name" >&2
+  exit 1
+fi
+cp "${seeds[@]}" "$work/corpus/"
 cd "$work"
 # -seed and -runs make a run reproducible (CI); -max_total_time bounds it;
 # -timeout: one input may not take more than 10 s; -rss_limit_mb bounds memory.

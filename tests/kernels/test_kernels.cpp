@@ -7,6 +7,7 @@
 #include <iostream>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <set>
 
 #include "kernels/systems/arnold_flow.hpp"
@@ -669,5 +670,21 @@ TEST(FormatNumber, IsTheShortestTextThatReadsBackAsTheSameDouble) {
   for (int i = 0; i < 10000; ++i) {
     const double v = i % 2 ? u(rng) : std::ldexp(u(rng), int(rng() % 200) - 100);
     EXPECT_EQ(std::strtod(format_number(v).c_str(), nullptr), v) << format_number(v);
+  }
+}
+
+// The environment loader's messages show positions to 6 digits, as they did
+// when they printed through iostream (tests/engine/test_engine_bad_input.cpp).
+TEST(FormatNumber, WithSignificantDigitsIsWhatIostreamPrints) {
+  EXPECT_EQ(format_number(0.8 * 12, 6), "9.6");
+  EXPECT_EQ(format_number((0.8 + 0.4) * 12, 6), "14.4");
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  std::vector<double> values{0.0, -0.0, 1e6, 1e-5, 123456.5, 5e17, INFINITY, -INFINITY, std::nan(""), -std::nan("")};
+  for (int i = 0; i < 10000; ++i) values.push_back(i % 2 ? u(rng) : std::ldexp(u(rng), int(rng() % 200) - 100));
+  for (double v : values) {
+    std::ostringstream os;
+    os << v;
+    EXPECT_EQ(format_number(v, 6), os.str()) << v;
   }
 }
