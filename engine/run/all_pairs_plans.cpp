@@ -6,11 +6,11 @@
 
 namespace chaosweep {
 
-std::vector<seed002::PlanRow> all_pairs_plans(const seed002::Roadmap& rm, const std::vector<int>& sources,
+std::vector<bouncing_paper::PlanRow> all_pairs_plans(const bouncing_paper::Roadmap& rm, const std::vector<int>& sources,
                                               int threads) {
-  std::vector<seed002::PlanRow> rows(sources.size());
+  std::vector<bouncing_paper::PlanRow> rows(sources.size());
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  parallel_indices(arena, sources.size(), [&](std::size_t i) { rows[i] = seed002::all_plans_from(rm, sources[i]); });
+  parallel_indices(arena, sources.size(), [&](std::size_t i) { rows[i] = bouncing_paper::all_plans_from(rm, sources[i]); });
   return rows;
 }
 
