@@ -405,10 +405,10 @@ FigureOutput cheb_lyapunov(const FigureOptions& opt, const std::string& path) {
 // distribution over the position cells as a heatmap (relative to uniform: 1 =
 // the uniform share); the CSV holds every policy's column too.
 FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
-  Seed002Options so;
+  BouncingPaperOptions so;
   so.bins = opt.bins;
-  const Seed002Analysis a = analyse_seed002(so);
-  const seed002::CellGrid& g = a.grid;
+  const BouncingPaperAnalysis a = analyse_seed002(so);
+  const bouncing_paper::CellGrid& g = a.grid;
   if (opt.policy < 0 || opt.policy > int(a.Pi.cols()))
     throw AnalysisError("--policy must be 0 (the mixture) or 1.." + std::to_string(a.Pi.cols()));
   const Eigen::VectorXd mix = opt.policy == 0 ? Eigen::VectorXd(a.Pi * a.alpha) : Eigen::VectorXd(a.Pi.col(opt.policy - 1));

@@ -337,7 +337,7 @@ const std::vector<TableKind>& table_kinds() {
       {"seed001", false, [](const ResultSet&, const TableOptions&) { return seed001_table(); }},
       {"seed002", false,
        [](const ResultSet&, const TableOptions& opt) {
-         Seed002Options o;
+         BouncingPaperOptions o;
          o.bins = opt.bins;
          return seed002_table(o);
        }},

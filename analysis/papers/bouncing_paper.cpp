@@ -18,7 +18,7 @@ namespace {
 // The paper's mixture for {30, 75, 315} degrees, eps 5, r 0.8 (docs/spec.md §5).
 constexpr double paper_alpha[3] = {0.221, 0.280, 0.499};
 
-bool paper_setting(const Seed002Options& o) {
+bool paper_setting(const BouncingPaperOptions& o) {
   return o.angles == std::vector<double>{30.0, 75.0, 315.0} && o.eps == 5.0 && o.r == 0.8;
 }
 
@@ -44,12 +44,12 @@ int angles_used(const std::string& plan) {
 
 namespace {
 
-Seed002Fit fit_mixture(const Eigen::MatrixXd& Pi) {
+BouncingPaperFit fit_mixture(const Eigen::MatrixXd& Pi) {
   const Eigen::VectorXd b = Eigen::VectorXd::Constant(Pi.rows(), 1.0 / double(Pi.rows()));
-  const seed002::Mixture m = seed002::best_mixture(Pi, b);
-  Seed002Fit f{m.alpha, m.residual, {}};
+  const bouncing_paper::Mixture m = bouncing_paper::best_mixture(Pi, b);
+  BouncingPaperFit f{m.alpha, m.residual, {}};
   for (Eigen::Index i = 0; i < Pi.cols(); ++i)
-    f.single_residual.push_back(seed002::mixture_residual(Pi, b, Eigen::VectorXd::Unit(Pi.cols(), i)));
+    f.single_residual.push_back(bouncing_paper::mixture_residual(Pi, b, Eigen::VectorXd::Unit(Pi.cols(), i)));
   return f;
 }
 
@@ -58,15 +58,15 @@ Seed002Fit fit_mixture(const Eigen::MatrixXd& Pi) {
 // 0..k distinct angles, then the share of unreachable goals (percent).
 std::vector<double> plans_by_angles(const Environment& env, int bins, const std::vector<double>& angles, double w2,
                                     int max_sources, int& sources_used) {
-  const seed002::CellGrid grid = seed002::make_grid(env, 1.0, bins);
-  const seed002::Roadmap rm = seed002::build_roadmap(grid, angles, 1.0, w2);
+  const bouncing_paper::CellGrid grid = bouncing_paper::make_grid(env, 1.0, bins);
+  const bouncing_paper::Roadmap rm = bouncing_paper::build_roadmap(grid, angles, 1.0, w2);
   std::vector<int> sources;
   const int step = std::max(1, grid.num_configs() / std::max(1, max_sources));
   for (int c = 0; c < grid.num_configs() && int(sources.size()) < max_sources; c += step) sources.push_back(c);
   sources_used = int(sources.size());
   std::vector<double> share(angles.size() + 2, 0.0);
   long total = 0;
-  for (const seed002::PlanRow& row : all_pairs_plans(rm, sources))
+  for (const bouncing_paper::PlanRow& row : all_pairs_plans(rm, sources))
     for (std::size_t g = 0; g < row.plans.size(); ++g) {
       ++total;
       share[row.weights[g] < 0 ? angles.size() + 1 : std::size_t(angles_used(row.plans[g]))] += 1.0;
@@ -77,7 +77,7 @@ std::vector<double> plans_by_angles(const Environment& env, int bins, const std:
 
 }  // namespace
 
-Seed002Analysis analyse_seed002(const Seed002Options& opt) {
+BouncingPaperAnalysis analyse_seed002(const BouncingPaperOptions& opt) {
   if (opt.bins < 4 || opt.bins > 3600) throw AnalysisError("--bins must be in [4, 3600]");
   Environment env;
   try {
@@ -85,35 +85,35 @@ Seed002Analysis analyse_seed002(const Seed002Options& opt) {
   } catch (const std::exception& e) {
     throw AnalysisError(e.what());
   }
-  Seed002Analysis a;
-  a.grid = seed002::make_grid(env, 1.0, opt.bins);
+  BouncingPaperAnalysis a;
+  a.grid = bouncing_paper::make_grid(env, 1.0, opt.bins);
   const int n = a.grid.num_free(), k = int(opt.angles.size());
   a.Pi.resize(n, k);
   Eigen::MatrixXd Pi_config(a.grid.num_configs(), k);
   for (int i = 0; i < k; ++i) {
-    const seed002::Limit lim =
-        seed002::limiting_distribution(seed002::transition_matrix(seed002::build_cell_map(a.grid, opt.angles[std::size_t(i)], opt.eps, opt.r)));
+    const bouncing_paper::Limit lim =
+        bouncing_paper::limiting_distribution(bouncing_paper::transition_matrix(bouncing_paper::build_cell_map(a.grid, opt.angles[std::size_t(i)], opt.eps, opt.r)));
     Pi_config.col(i) = lim.pi;
-    a.Pi.col(i) = seed002::position_marginal(a.grid, lim.pi);
+    a.Pi.col(i) = bouncing_paper::position_marginal(a.grid, lim.pi);
     a.persistent_groups.push_back(lim.groups);
   }
   a.by_configuration = fit_mixture(Pi_config);
   a.by_position = fit_mixture(a.Pi);
-  const Seed002Fit& chosen = opt.fit == Seed002Options::Fit::configurations ? a.by_configuration : a.by_position;
+  const BouncingPaperFit& chosen = opt.fit == BouncingPaperOptions::Fit::configurations ? a.by_configuration : a.by_position;
   a.alpha = chosen.alpha;
   a.residual = chosen.residual;
   return a;
 }
 
-TextTable seed002_table(const Seed002Options& opt) {
-  const Seed002Analysis a = analyse_seed002(opt);
+TextTable seed002_table(const BouncingPaperOptions& opt) {
+  const BouncingPaperAnalysis a = analyse_seed002(opt);
   const bool paper = paper_setting(opt);
   TextTable t;
   t.title = "Seed 002: bouncing policies on " + opt.env + " (" + std::to_string(a.grid.num_free()) +
             " free cells x " + std::to_string(opt.bins) + " bins = " + std::to_string(a.grid.num_configs()) +
             " configurations), eps " + format_number(opt.eps) + ", r " + format_number(opt.r);
   t.header = {"quantity", "policy", "ours", "paper"};
-  const std::pair<const char*, const Seed002Fit*> fits[] = {
+  const std::pair<const char*, const BouncingPaperFit*> fits[] = {
       {"configurations (Eq. 5 as written: n = N)", &a.by_configuration}, {"position cells", &a.by_position}};
   for (const auto& [space, fit] : fits) {
     for (std::size_t i = 0; i < opt.angles.size(); ++i) {

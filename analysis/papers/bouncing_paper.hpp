@@ -12,7 +12,7 @@
 
 namespace chaosweep {
 
-struct Seed002Options {
+struct BouncingPaperOptions {
   std::string env = "seed002_map";                 // environment name or file
   int bins = 360;                                  // orientation bins (the paper: 1 degree)
   std::vector<double> angles{30.0, 75.0, 315.0};  // policies, degrees
@@ -25,27 +25,27 @@ struct Seed002Options {
 };
 
 // One fit of Eq. 5: the mixture on the simplex closest to uniform b.
-struct Seed002Fit {
+struct BouncingPaperFit {
   Eigen::VectorXd alpha;
   double residual = 0;                  // ||Pi alpha - b||
   std::vector<double> single_residual;  // ||Pi e_i - b|| per policy
 };
 
-struct Seed002Analysis {
-  seed002::CellGrid grid;
+struct BouncingPaperAnalysis {
+  bouncing_paper::CellGrid grid;
   Eigen::MatrixXd Pi;     // column i: policy i's limiting distribution over free position cells
   Eigen::VectorXd alpha;  // the best mixture of the chosen fit (opt.fit)
   double residual = 0;    // its ||Pi alpha - b|| in that fit's space
-  Seed002Fit by_configuration, by_position;  // both fits
+  BouncingPaperFit by_configuration, by_position;  // both fits
   std::vector<int> persistent_groups;
 };
 
-Seed002Analysis analyse_seed002(const Seed002Options& opt);
+BouncingPaperAnalysis analyse_seed002(const BouncingPaperOptions& opt);
 
 // Rows: alpha per policy of both fits (ours, the paper's), residuals,
 // persistent groups, and plans by the number of distinct angles they use,
 // with opt's angles, bins and w2 and with the paper's navigation setting
 // (Figs. 7-8: {45, 90, 135} degrees, 8 orientations, w2 = 100).
-TextTable seed002_table(const Seed002Options& opt);
+TextTable seed002_table(const BouncingPaperOptions& opt);
 
 }  // namespace chaosweep

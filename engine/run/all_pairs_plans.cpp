@@ -4,10 +4,10 @@
 
 namespace chaosweep {
 
-std::vector<seed002::PlanRow> all_pairs_plans(const seed002::Roadmap& rm, const std::vector<int>& sources,
+std::vector<bouncing_paper::PlanRow> all_pairs_plans(const bouncing_paper::Roadmap& rm, const std::vector<int>& sources,
                                               int threads) {
-  std::vector<seed002::PlanRow> rows(sources.size());
-  parallel_indices(threads, sources.size(), [&](std::size_t i) { rows[i] = seed002::all_plans_from(rm, sources[i]); });
+  std::vector<bouncing_paper::PlanRow> rows(sources.size());
+  parallel_indices(threads, sources.size(), [&](std::size_t i) { rows[i] = bouncing_paper::all_plans_from(rm, sources[i]); });
   return rows;
 }
 

@@ -9,7 +9,7 @@
 
 namespace chaosweep {
 
-std::vector<seed002::PlanRow> all_pairs_plans(const seed002::Roadmap& rm, const std::vector<int>& sources,
+std::vector<bouncing_paper::PlanRow> all_pairs_plans(const bouncing_paper::Roadmap& rm, const std::vector<int>& sources,
                                               int threads = 0);
 
 }  // namespace chaosweep

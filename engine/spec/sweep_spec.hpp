@@ -5,7 +5,7 @@
 // slowest, axes in file order. A spec may also hold [[part]] tables: each is
 // its own product (its fixed settings and axes over the spec's base, then the
 // spec's top-level axes), and the runs are the parts' runs one after the
-// other in file order. See README.md, "Sweep specs".
+// other in file order. See docs/sweep_specs.md.
 #include <cstdint>
 #include <memory>
 #include <stdexcept>

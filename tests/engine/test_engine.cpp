@@ -833,7 +833,7 @@ TEST(Json, WritesEveryColumnAndNanAsNull) {
 }
 
 TEST(AllPairsPlans, ParallelRowsEqualTheSerialPlansWhateverTheThreads) {
-  using namespace seed002;
+  using namespace bouncing_paper;
   Environment env;
   env.lx = env.ly = 4;
   env.obstacles = {{1, 1, 2, 3}};

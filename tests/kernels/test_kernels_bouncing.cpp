@@ -29,7 +29,7 @@
 #include "kernels/planners/bouncing/scc.hpp"
 
 using namespace chaosweep;
-using namespace chaosweep::seed002;
+using namespace chaosweep::bouncing_paper;
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
-using namespace chaosweep::seed003;
+using namespace chaosweep::contraction_paper;
 
 namespace {
 
@@ -21,8 +21,8 @@ bool inside(const Point& p, const Workplace& wp) { return p.x >= 0.0 && p.x <= w
 
 // A robot that drives straight: with A = B = C = 0 the Arnold state stays at
 // ic, so the heading is ic[2] for ever.
-Seed003Robot straight_robot(double heading) {
-  Seed003Robot r;
+ContractionRobot straight_robot(double heading) {
+  ContractionRobot r;
   r.A = r.B = r.C = 0.0;
   r.ic = {0.0, 0.0, heading};
   return r;
@@ -51,7 +51,7 @@ TEST(Seed003Trajectory, Rk2ConvergesAtSecondOrder) {
   for (Rk2 method : {Rk2::heun, Rk2::midpoint}) {
     const double T = 4.0;
     auto end_at = [&](double h) {
-      Seed003Robot r;
+      ContractionRobot r;
       r.method = method;
       r.h = h;
       return seed003_trajectory(r, {0, 0}, int(std::lround(T / h))).back();
@@ -125,7 +125,7 @@ TEST(Seed003Coverage, SegmentsCoverEveryCellCrossedPointsOnlyTheirOwn) {
   Workplace wp;
   const std::vector<Point> path{{0.5, 0.5}, {3.5, 0.5}};
   EXPECT_DOUBLE_EQ(coverage_rate(path, wp), 4.0 / 400.0);
-  wp.sampling = seed003::Sampling::points;
+  wp.sampling = contraction_paper::Sampling::points;
   EXPECT_DOUBLE_EQ(coverage_rate(path, wp), 2.0 / 400.0);
 }
 
@@ -208,7 +208,7 @@ TEST(Seed003Contraction, ContractedTrajectoryStartsAtThePreviousEndAndStaysInThe
 // the 40% threshold (the paper: 41.25% at (0, 0)).
 TEST(Seed003Candidates, SweepGivesTwelveSamplesAndThePaperRobotMissesTheThreshold) {
   const Workplace wp;
-  const CandidateSweep s = candidate_sweep(Seed003Robot{}, {0, 0}, wp);
+  const CandidateSweep s = candidate_sweep(ContractionRobot{}, {0, 0}, wp);
   ASSERT_EQ(s.samples.size(), 12u);
   for (std::size_t i = 0; i < 12; ++i) {
     EXPECT_EQ(s.samples[i].n, 800 + 100 * int(i));
@@ -218,15 +218,15 @@ TEST(Seed003Candidates, SweepGivesTwelveSamplesAndThePaperRobotMissesTheThreshol
   EXPECT_EQ(s.coverage_first, s.samples[0].coverage);
   EXPECT_DOUBLE_EQ(s.coverage_first, 123.0 / 400.0);
   EXPECT_FALSE(s.kept);
-  const CandidateSweep t = candidate_sweep(Seed003Robot{}, {8, 8}, wp);
+  const CandidateSweep t = candidate_sweep(ContractionRobot{}, {8, 8}, wp);
   EXPECT_EQ(t.coverage_first, s.coverage_first);
 }
 
 TEST(Seed003CompleteCoverage, LoopReaches90PercentAsOneContinuousPath) {
   const Workplace wp;
-  const std::vector<Candidate> cands = ic_grid_candidates(Seed003Robot{}, 1.0, wp);
+  const std::vector<Candidate> cands = ic_grid_candidates(ContractionRobot{}, 1.0, wp);
   ASSERT_FALSE(cands.empty());
-  const CompleteCoverage cc = complete_coverage(Seed003Robot{}, cands, {10, 10}, wp, 0.90, 30);
+  const CompleteCoverage cc = complete_coverage(ContractionRobot{}, cands, {10, 10}, wp, 0.90, 30);
   EXPECT_TRUE(cc.reached);
   EXPECT_GE(cc.coverage, 0.90);
   EXPECT_DOUBLE_EQ(cc.coverage, coverage_rate(cc.path, wp));
@@ -248,7 +248,7 @@ TEST(Seed003CompleteCoverage, LoopReaches90PercentAsOneContinuousPath) {
 }
 
 TEST(Seed003CompleteCoverage, NoCandidatesLaysNoSection) {
-  const CompleteCoverage cc = complete_coverage(Seed003Robot{}, {}, {10, 10}, Workplace{});
+  const CompleteCoverage cc = complete_coverage(ContractionRobot{}, {}, {10, 10}, Workplace{});
   EXPECT_TRUE(cc.sections.empty());
   EXPECT_FALSE(cc.reached);
   EXPECT_EQ(cc.path.size(), 1u);
@@ -260,7 +260,7 @@ TEST(Seed003CompleteCoverage, NoCandidatesLaysNoSection) {
 // 19.95 + 40 = 59.95 -> crossings at 20 and 40).
 TEST(Seed003Mirror, CountsReflectionsOnAStraightRun) {
   const Workplace wp;
-  const Seed003Robot r = straight_robot(0.0);
+  const ContractionRobot r = straight_robot(0.0);
   const MirrorRun pt = mirror_mapping(r, {19.95, 10}, 10, wp, MirrorMode::point);
   EXPECT_EQ(pt.reflections, 10);
   ASSERT_EQ(pt.crossings.size(), 10u);
@@ -281,14 +281,14 @@ TEST(Seed003Mirror, CountsReflectionsOnAStraightRun) {
 // coverage comes out exactly as printed (12% at n = 418, 16.75% at n = 779).
 TEST(Seed003Mirror, KeepsEveryPointInTheWorkplaceAndMatchesFig16ab) {
   const Workplace wp;
-  const MirrorRun m = mirror_mapping(Seed003Robot{}, {10, 10}, 7121, wp);
+  const MirrorRun m = mirror_mapping(ContractionRobot{}, {10, 10}, 7121, wp);
   ASSERT_EQ(m.path.size(), 7122u);
   for (const Point& p : m.path) ASSERT_TRUE(inside(p, wp)) << p.x << ", " << p.y;
   for (const Point& c : m.crossings) EXPECT_TRUE(c.x == 0.0 || c.x == 20.0 || c.y == 0.0 || c.y == 20.0);
   EXPECT_GE(m.reflections, long(m.crossings.size()));
   EXPECT_GT(m.reflections, 1000);  // hugging the wall (the paper: 1500)
-  EXPECT_DOUBLE_EQ(mirror_mapping(Seed003Robot{}, {10, 10}, 418, wp).coverage, 48.0 / 400.0);
-  EXPECT_DOUBLE_EQ(mirror_mapping(Seed003Robot{}, {10, 10}, 779, wp).coverage, 67.0 / 400.0);
+  EXPECT_DOUBLE_EQ(mirror_mapping(ContractionRobot{}, {10, 10}, 418, wp).coverage, 48.0 / 400.0);
+  EXPECT_DOUBLE_EQ(mirror_mapping(ContractionRobot{}, {10, 10}, 779, wp).coverage, 67.0 / 400.0);
 }
 
 // Prints our numbers beside the paper's Tables 1-3, Section 6 (the paper's
@@ -309,7 +309,7 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
   double ours[3][10];
   for (int s = 0; s < 10; ++s) {
     for (int h = 0; h < 3; ++h) {
-      Seed003Robot r;
+      ContractionRobot r;
       r.heading = Heading(h + 1);
       ours[h][s] = 100.0 * coverage_rate(map_to_workplace(seed003_trajectory(r, {double(s), double(s)}, 800), wp), wp);
       EXPECT_GT(ours[h][s], 0.0);
@@ -328,7 +328,7 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
   std::printf("Table 1/2 with ic = (s, s, 0): start | ours x y z\n");
   for (int s = 0; s < 10; ++s) {
     for (int h = 0; h < 3; ++h) {
-      Seed003Robot r;
+      ContractionRobot r;
       r.heading = Heading(h + 1);
       r.ic = {double(s), double(s), 0.0};
       ours[h][s] = 100.0 * coverage_rate(map_to_workplace(seed003_trajectory(r, {double(s), double(s)}, 800), wp), wp);
@@ -355,16 +355,16 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
               "%.2f%%, to (15,16) %.2f%% (paper: (13.8, 11.6), 49%%, 41%%, 25%%)\n",
               m8[0].x, m8[0].y, 100.0 * coverage_rate(m8, wp), 100.0 * coverage_rate(contract_to(m8, {11, 11}, wp), wp),
               100.0 * coverage_rate(contract_to(m8, {15, 16}, wp), wp));
-  const CandidateSweep lit = candidate_sweep(Seed003Robot{}, {0, 0}, wp, {800, 1900, 100, 0.0});
-  const CompleteCoverage cl = complete_coverage(Seed003Robot{}, lit.samples, {10, 10}, wp, 0.90, 30);
+  const CandidateSweep lit = candidate_sweep(ContractionRobot{}, {0, 0}, wp, {800, 1900, 100, 0.0});
+  const CompleteCoverage cl = complete_coverage(ContractionRobot{}, lit.samples, {10, 10}, wp, 0.90, 30);
   std::printf("Section 6 (paper robot, its 12 samples, no threshold): %zu sections, n = %ld, coverage %.2f%%\n",
               cl.sections.size(), cl.iterations, 100.0 * cl.coverage);
   std::printf("Fig. 16 mirror mapping from (10,10): n | ours nf, coverage (point / fold) | paper nf, coverage\n");
   const int fn[4] = {418, 779, 3401, 7121}, fnf[4] = {20, 100, 500, 1500};
   const double fc[4] = {12.0, 16.75, 55.75, 62.5};
   for (int i = 0; i < 4; ++i) {
-    const MirrorRun p = mirror_mapping(Seed003Robot{}, {10, 10}, fn[i], wp, MirrorMode::point);
-    const MirrorRun f = mirror_mapping(Seed003Robot{}, {10, 10}, fn[i], wp, MirrorMode::fold);
+    const MirrorRun p = mirror_mapping(ContractionRobot{}, {10, 10}, fn[i], wp, MirrorMode::point);
+    const MirrorRun f = mirror_mapping(ContractionRobot{}, {10, 10}, fn[i], wp, MirrorMode::fold);
     std::printf("  %5d | %5ld %6.2f / %4ld %6.2f | %5d %6.2f\n", fn[i], p.reflections, 100.0 * p.coverage, f.reflections,
                 100.0 * f.coverage, fnf[i], fc[i]);
   }
@@ -374,11 +374,11 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
     int lo = 1, hi = 9000;
     while (lo < hi) {
       const int mid = (lo + hi) / 2;
-      if (mirror_mapping(Seed003Robot{}, {10, 10}, mid, wp).reflections >= fnf[i]) hi = mid;
+      if (mirror_mapping(ContractionRobot{}, {10, 10}, mid, wp).reflections >= fnf[i]) hi = mid;
       else lo = mid + 1;
     }
     std::printf("  nf reaches %4d at n = %4d, coverage %6.2f | paper n = %4d, %6.2f\n", fnf[i], lo,
-                100.0 * mirror_mapping(Seed003Robot{}, {10, 10}, lo, wp).coverage, fn[i], fc[i]);
+                100.0 * mirror_mapping(ContractionRobot{}, {10, 10}, lo, wp).coverage, fn[i], fc[i]);
   }
   std::cout.flush();
 }
@@ -389,8 +389,8 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
 TEST(Seed003Report, DISABLED_IcGridLoops) {
   const Workplace wp;
   for (double step : {1.0, 0.5, 0.25, 0.1}) {
-    const std::vector<Candidate> cands = ic_grid_candidates(Seed003Robot{}, step, wp);
-    const CompleteCoverage cc = complete_coverage(Seed003Robot{}, cands, {10, 10}, wp, 0.90, 30);
+    const std::vector<Candidate> cands = ic_grid_candidates(ContractionRobot{}, step, wp);
+    const CompleteCoverage cc = complete_coverage(ContractionRobot{}, cands, {10, 10}, wp, 0.90, 30);
     std::printf("ic grid step %.2f: %zu candidates, %zu sections, n = %ld, coverage %.2f%%, reached %d\n", step,
                 cands.size(), cc.sections.size(), cc.iterations, 100.0 * cc.coverage, int(cc.reached));
     print_sections(cc);

@@ -5,7 +5,7 @@
 #include <limits>
 #include <map>
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
@@ -145,4 +145,4 @@ CellMap build_cell_map(const CellGrid& grid, double phi_deg, double eps_deg, dou
   return m;
 }
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

@@ -15,7 +15,7 @@
 
 #include "kernels/core/environment.hpp"
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 // Position cells (square grid of side `cell` over [0,lx] x [0,ly]) x
 // orientation bins (bin k is centred on k * 360/bins degrees). Only free
@@ -75,4 +75,4 @@ struct CellMap {
 CellMap build_cell_map(const CellGrid& grid, double phi_deg, double eps_deg, double r,
                        const GcmOptions& opts = {});
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

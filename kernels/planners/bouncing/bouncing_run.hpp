@@ -2,7 +2,7 @@
 // Seed 002's bouncing robot in the common coverage model (planner =
 // bouncing): a minimalist robot with a contact sensor drives straight and,
 // at each bump, turns by the angle of a policy drawn from the mixture alpha
-// (the output of seed002::best_mixture), so its coverage time compares with
+// (the output of bouncing_paper::best_mixture), so its coverage time compares with
 // the chaotic planners' on the same map.
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"

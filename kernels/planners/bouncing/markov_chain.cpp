@@ -3,7 +3,7 @@
 #include <Eigen/SparseLU>
 #include <stdexcept>
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 SparseMatrix transition_matrix(const CellMap& m) {
   std::vector<Eigen::Triplet<double>> t;
@@ -140,4 +140,4 @@ Eigen::VectorXd policy_coverage(const CellGrid& grid, double phi_deg, double eps
   return position_marginal(grid, limiting_distribution(P).pi);
 }
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

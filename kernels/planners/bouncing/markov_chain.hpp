@@ -20,7 +20,7 @@
 #include "kernels/planners/bouncing/bouncing_cells.hpp"
 #include "kernels/planners/bouncing/scc.hpp"
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 // P(i, j) = Pr(config i -> config j); rows sum to 1.
 using SparseMatrix = Eigen::SparseMatrix<double>;
@@ -48,4 +48,4 @@ Eigen::VectorXd position_marginal(const CellGrid& grid, const Eigen::VectorXd& p
 Eigen::VectorXd policy_coverage(const CellGrid& grid, double phi_deg, double eps_deg, double r,
                                 const GcmOptions& opts = {});
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

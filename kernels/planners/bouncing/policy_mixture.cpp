@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 double mixture_residual(const Eigen::MatrixXd& Pi, const Eigen::VectorXd& b, const Eigen::VectorXd& alpha) {
   return (Pi * alpha - b).norm();
@@ -51,4 +51,4 @@ Mixture best_mixture(const Eigen::MatrixXd& Pi, const Eigen::VectorXd& b) {
   return best;  // singletons are always feasible, so best is set
 }
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

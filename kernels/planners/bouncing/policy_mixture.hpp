@@ -11,7 +11,7 @@
 // max_policies (a projected-gradient solver would be the tool there).
 #include <Eigen/Core>
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 struct Mixture {
   Eigen::VectorXd alpha;
@@ -24,4 +24,4 @@ Mixture best_mixture(const Eigen::MatrixXd& Pi, const Eigen::VectorXd& b);
 
 double mixture_residual(const Eigen::MatrixXd& Pi, const Eigen::VectorXd& b, const Eigen::VectorXd& alpha);
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

@@ -6,7 +6,7 @@
 #include <queue>
 #include <sstream>
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 Roadmap build_roadmap(const CellGrid& grid, const std::vector<double>& angles_deg, double w1, double w2,
                       const GcmOptions& opts) {
@@ -124,4 +124,4 @@ PlanRow all_plans_from(const Roadmap& rm, int source_config) {
   return row;
 }
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

@@ -16,7 +16,7 @@
 
 #include "kernels/planners/bouncing/bouncing_cells.hpp"
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 struct PlanStep {
   int policy;  // the policy in force after this step
@@ -69,4 +69,4 @@ struct PlanRow {
 };
 PlanRow all_plans_from(const Roadmap& rm, int source_config);
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 Scc tarjan_scc(const Digraph& g) {
   const int n = g.size();
@@ -65,4 +65,4 @@ std::vector<int> persistent_groups(const Scc& scc, int* groups) {
   return out;
 }
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace chaosweep::seed002 {
+namespace chaosweep::bouncing_paper {
 
 // Directed graph in CSR form: the successors of v are adj[start[v] .. start[v+1]).
 struct Digraph {
@@ -28,4 +28,4 @@ Scc tarjan_scc(const Digraph& g);
 // component id) or -1 for a transient node; `groups` receives the count.
 std::vector<int> persistent_groups(const Scc& scc, int* groups = nullptr);
 
-}  // namespace chaosweep::seed002
+}  // namespace chaosweep::bouncing_paper

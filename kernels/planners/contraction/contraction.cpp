@@ -11,7 +11,7 @@
 
 // Seed 003 has its own Sampling, Heading, ... : a namespace keeps them apart
 // from the common model's (run_params.hpp).
-namespace chaosweep::seed003 {
+namespace chaosweep::contraction_paper {
 
 namespace {
 
@@ -48,7 +48,7 @@ double clamp(double x, double lo, double hi) { return std::min(std::max(x, lo), 
 // The state is wrapped into [-pi, pi] after each step: the right-hand side
 // and the heading are 2 pi-periodic in x, y and z, so this changes rounding
 // only and keeps the kernels' sincos in its accurate range.
-std::vector<Point> seed003_trajectory(const Seed003Robot& r, Point start, int n) {
+std::vector<Point> seed003_trajectory(const ContractionRobot& r, Point start, int n) {
   if (n < 0) throw std::invalid_argument("seed003_trajectory: n must be >= 0");
   const ArnoldCoeffs<double> k{r.A, r.B, r.C};
   const HeadingSelect<double> hs = heading_select(int(r.heading));
@@ -83,7 +83,7 @@ std::vector<Point> seed003_trajectory(const Seed003Robot& r, Point start, int n)
 }
 
 std::vector<Point> seed003_trajectory(Point start, int n, Heading heading) {
-  Seed003Robot r;
+  ContractionRobot r;
   r.heading = heading;
   return seed003_trajectory(r, start, n);
 }
@@ -158,7 +158,7 @@ std::vector<Point> contract_to(const std::vector<Point>& path, Point target, con
   return out;
 }
 
-CandidateSweep candidate_sweep(const Seed003Robot& robot, Point start, const Workplace& wp, const CandidateParams& p) {
+CandidateSweep candidate_sweep(const ContractionRobot& robot, Point start, const Workplace& wp, const CandidateParams& p) {
   if (p.n_min < 1 || p.n_step < 1 || p.n_max < p.n_min)
     throw std::invalid_argument("candidate_sweep: need 1 <= n_min <= n_max and n_step >= 1");
   // One trajectory to n_max: each sample is a prefix (the robot is the same).
@@ -195,7 +195,7 @@ bool collapses(double from, double to, double m) {
 }
 }  // namespace
 
-CompleteCoverage complete_coverage(const Seed003Robot& robot, const std::vector<Candidate>& candidates, Point start,
+CompleteCoverage complete_coverage(const ContractionRobot& robot, const std::vector<Candidate>& candidates, Point start,
                                    const Workplace& wp, double target, int max_sections) {
   CompleteCoverage out;
   out.path.push_back(start);
@@ -219,7 +219,7 @@ CompleteCoverage complete_coverage(const Seed003Robot& robot, const std::vector<
     }
     if (best < 0) break;  // none left: a dead end
     const Candidate& c = candidates[std::size_t(best)];
-    Seed003Robot r = robot;
+    ContractionRobot r = robot;
     r.ic = c.ic;
     const std::vector<Point> section = contract_to(map_to_workplace(seed003_trajectory(r, c.start, c.n), wp), end, wp);
     const std::size_t first_new = out.path.size();
@@ -239,7 +239,7 @@ CompleteCoverage complete_coverage(const Seed003Robot& robot, const std::vector<
 // meets the wall, m_{i+1} the mirror image of m_i' in that wall. The step is
 // walked wall by wall, so a step that leaves through two walls (a corner) or,
 // with a large step, several times is reflected each time.
-MirrorRun mirror_mapping(const Seed003Robot& robot, Point start, int n, const Workplace& wp, MirrorMode mode) {
+MirrorRun mirror_mapping(const ContractionRobot& robot, Point start, int n, const Workplace& wp, MirrorMode mode) {
   if (!(start.x >= 0.0 && start.x <= wp.w && start.y >= 0.0 && start.y <= wp.h))
     throw std::invalid_argument("mirror_mapping: the start must lie in the workplace");
   const std::vector<Point> free_run = seed003_trajectory(robot, start, n);
@@ -289,13 +289,13 @@ MirrorRun mirror_mapping(const Seed003Robot& robot, Point start, int n, const Wo
   return out;
 }
 
-std::vector<Candidate> ic_grid_candidates(const Seed003Robot& robot, double step, const Workplace& wp,
+std::vector<Candidate> ic_grid_candidates(const ContractionRobot& robot, double step, const Workplace& wp,
                                           const CandidateParams& p) {
   std::vector<Candidate> out;
   const int k = int(std::lround(10.0 / step));
   for (int i = 0; i <= k; ++i)
     for (int j = 0; j <= k; ++j) {
-      Seed003Robot r = robot;
+      ContractionRobot r = robot;
       r.ic = {i * step, j * step, 0.0};
       const CandidateSweep s = candidate_sweep(r, {i * step, j * step}, wp, p);
       if (s.kept) out.insert(out.end(), s.samples.begin(), s.samples.end());
@@ -303,4 +303,4 @@ std::vector<Candidate> ic_grid_candidates(const Seed003Robot& robot, double step
   return out;
 }
 
-}  // namespace chaosweep::seed003
+}  // namespace chaosweep::contraction_paper

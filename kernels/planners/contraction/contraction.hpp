@@ -14,7 +14,7 @@
 // start point. The paper reports start-dependent numbers (Table 1, Fig. 3),
 // which this model, read literally, cannot give (and at ic (4, 3.5, 0) no
 // start reaches Algorithm 1's 40%); the Arnold initial state is therefore a
-// parameter (Seed003Robot::ic), the knob that does change them, and each
+// parameter (ContractionRobot::ic), the knob that does change them, and each
 // Candidate carries its own. The robot itself is the paper's: unmapped, from
 // (10, 10) under mirror mapping, it covers exactly the 12% and 16.75% of
 // Fig. 16a-b; what differs is Map, which the paper does not define.
@@ -25,7 +25,7 @@
 
 // Seed 003 has its own Sampling, Heading, ... : a namespace keeps them apart
 // from the common model's (run_params.hpp).
-namespace chaosweep::seed003 {
+namespace chaosweep::contraction_paper {
 
 // Which Arnold coordinate is the robot's heading (the paper's x, y or z;
 // numbered as DSindex in seed 000).
@@ -55,7 +55,7 @@ enum class MapAspect { per_axis, uniform };
 // mirrored too (the free trajectory folded like a billiard; 55 reflections).
 enum class MirrorMode { point, fold };
 
-struct Seed003Robot {
+struct ContractionRobot {
   double A = 1.0, B = 0.5, C = 0.5;
   std::array<double, 3> ic{4.0, 3.5, 0.0};  // Arnold (x, y, z) at step 0
   Heading heading = Heading::z;
@@ -75,7 +75,7 @@ struct Workplace {
 
 // n + 1 robot positions (start first) in the unbounded plane: n RK2 steps of
 // the 5-state system (x, y, z, xr, yr) of Eq. 6 from (ic, start).
-std::vector<Point> seed003_trajectory(const Seed003Robot& robot, Point start, int n);
+std::vector<Point> seed003_trajectory(const ContractionRobot& robot, Point start, int n);
 // The paper's robot (A, B, C) = (1, 0.5, 0.5), ic (4, 3.5, 0), v = 1,
 // h = 0.1, Heun, with the given heading.
 std::vector<Point> seed003_trajectory(Point start, int n, Heading heading = Heading::z);
@@ -133,7 +133,7 @@ struct CandidateSweep {
   bool kept;
   std::vector<Candidate> samples;
 };
-CandidateSweep candidate_sweep(const Seed003Robot& robot, Point start, const Workplace& wp,
+CandidateSweep candidate_sweep(const ContractionRobot& robot, Point start, const Workplace& wp,
                                const CandidateParams& p = {});
 
 // Algorithm 1 with the start point seeding the Arnold state, ic = (a, b, 0)
@@ -141,7 +141,7 @@ CandidateSweep candidate_sweep(const Seed003Robot& robot, Point start, const Wor
 // from `robot`): the candidates of every kept start. In the literal model the
 // start point changes nothing after Map and no start reaches the 40%
 // threshold (docs/seed003.md), so this is the reading the loop runs on.
-std::vector<Candidate> ic_grid_candidates(const Seed003Robot& robot, double step, const Workplace& wp,
+std::vector<Candidate> ic_grid_candidates(const ContractionRobot& robot, double step, const Workplace& wp,
                                           const CandidateParams& p = {});
 
 // Section 6: from `start`, repeatedly pick the candidate whose mapped start is
@@ -163,7 +163,7 @@ struct CompleteCoverage {
   double coverage = 0.0;
   bool reached = false;
 };
-CompleteCoverage complete_coverage(const Seed003Robot& robot, const std::vector<Candidate>& candidates,
+CompleteCoverage complete_coverage(const ContractionRobot& robot, const std::vector<Candidate>& candidates,
                                    Point start, const Workplace& wp, double target = 0.90,
                                    int max_sections = 100);
 
@@ -178,7 +178,7 @@ struct MirrorRun {
   long reflections = 0;
   double coverage = 0.0;
 };
-MirrorRun mirror_mapping(const Seed003Robot& robot, Point start, int n, const Workplace& wp,
+MirrorRun mirror_mapping(const ContractionRobot& robot, Point start, int n, const Workplace& wp,
                          MirrorMode mode = MirrorMode::point);
 
-}  // namespace chaosweep::seed003
+}  // namespace chaosweep::contraction_paper

@@ -11,14 +11,14 @@ namespace chaosweep {
 
 namespace {
 
-seed003::Seed003Robot robot_of(const RunParams& p) {
-  seed003::Seed003Robot r;
+contraction_paper::ContractionRobot robot_of(const RunParams& p) {
+  contraction_paper::ContractionRobot r;
   r.A = p.A, r.B = p.B, r.C = p.C;
   // ic_jitter samples the chaotic spread here too (unwrapped: with no jitter
   // the state is ic bit for bit).
   const Vec3<double> ic = jittered_ic(p);
   r.ic = {ic.x, ic.y, ic.z};
-  r.heading = seed003::Heading(p.ds_index);
+  r.heading = contraction_paper::Heading(p.ds_index);
   r.v = p.v;
   r.h = p.dt;
   return r;
@@ -34,11 +34,11 @@ std::string validate_contraction(const RunParams&, const Environment& env) {
 }
 
 void run_contraction(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r, TraceSink* trace) {
-  using namespace seed003;
-  const Seed003Robot robot = robot_of(p);
+  using namespace contraction_paper;
+  const ContractionRobot robot = robot_of(p);
   Workplace wp;
   wp.w = env.lx, wp.h = env.ly, wp.cell = p.sr;
-  wp.sampling = p.sampling == chaosweep::Sampling::points ? seed003::Sampling::points : seed003::Sampling::segments;
+  wp.sampling = p.sampling == chaosweep::Sampling::points ? contraction_paper::Sampling::points : contraction_paper::Sampling::segments;
   const Point start{p.start_x, p.start_y};
   std::vector<Point> path;
   switch (p.c3_mode) {
