@@ -10,15 +10,15 @@
 
 #include "analysis/grouping.hpp"
 #include "analysis/named_list.hpp"
-#include "kernels/planners/chebyshev/chebyshev_analysis.hpp"
-#include "kernels/systems/chebyshev_map.hpp"
-#include "kernels/core/param_table.hpp"
-#include "kernels/planners/chebyshev/rect_decomposition.hpp"
 #include "analysis/papers/bouncing_paper.hpp"
 #include "analysis/replay.hpp"
 #include "analysis/tables.hpp"
 #include "analysis/text_table.hpp"
+#include "kernels/core/param_table.hpp"
 #include "kernels/planners/arnold/zones.hpp"
+#include "kernels/planners/chebyshev/chebyshev_analysis.hpp"
+#include "kernels/planners/chebyshev/rect_decomposition.hpp"
+#include "kernels/systems/chebyshev_map.hpp"
 
 namespace chaosweep {
 
@@ -111,8 +111,8 @@ FigureOutput fig6b(const ResultSet& rs, const FigureOptions& opt, const std::str
     for (const Tuple& t : tuples) lo = std::min(lo, get(t)), hi = std::max(hi, get(t));
     return hi > lo ? hi - lo : 1.0;
   };
-  const double sa = span([](const Tuple& t) { return t.a; }), sb = span([](const Tuple& t) { return t.b; }),
-               sc = span([](const Tuple& t) { return t.c; });
+  const double sa = span([](const Tuple&t) { return t.a; }), sb = span([](const Tuple&t) { return t.b; }),
+               sc = span([](const Tuple&t) { return t.c; });
   std::size_t best = 0;
   double best_d = 1e300;
   for (std::size_t i = 0; i < tuples.size(); ++i) {
@@ -149,8 +149,8 @@ FigureOutput fig6b(const ResultSet& rs, const FigureOptions& opt, const std::str
   if (std::isinf(mk.ct)) {
     out.lines.push_back(who + " did not reach the target within its runs' budget");
   } else {
-    out.lines.push_back(who + ": median CT " + fmt_sig(mk.ct, 6) + " s; " + fmt_fixed(100.0 * within / n, 1) +
-                        "% of " + std::to_string(tuples.size()) + " tuples are at least as fast (rank " +
+    out.lines.push_back(who + ": median CT " + fmt_sig(mk.ct, 6) + " s; " + fmt_fixed(100.0 * within / n, 1) + "% of " +
+                        std::to_string(tuples.size()) + " tuples are at least as fast (rank " +
                         std::to_string(best + 1) + ")");
   }
   LinePlot p;
@@ -208,8 +208,8 @@ FigureOutput trajectory(const ResultSet& rs, const FigureOptions& opt, const std
   const RunParams& p = rp.tuple.params;
   MapPlot m;
   m.title = "Run " + rs.cell("run_id", r) + ": " + rs.text("variant")[r] + ", " + to_string(rp.result.status) +
-            (std::isnan(rp.result.coverage_time) ? "" : ", CT " + fmt_sig(rp.result.coverage_time, 5) + " s") +
-            ", " + fmt_fixed(100.0 * rp.grid.coverage(), 1) + "% covered";
+            (std::isnan(rp.result.coverage_time) ? "" : ", CT " + fmt_sig(rp.result.coverage_time, 5) + " s") + ", " +
+            fmt_fixed(100.0 * rp.grid.coverage(), 1) + "% covered";
   m.lx = env.lx, m.ly = env.ly;
   m.cell = rp.grid.cell_size();
   m.nx = rp.grid.nx(), m.ny = rp.grid.ny();
@@ -246,7 +246,8 @@ FigureOutput trajectory(const ResultSet& rs, const FigureOptions& opt, const std
       if (i > 0) paths.back().emplace_back(rp.points[i - 1].x, rp.points[i - 1].y);
       in_transit = transit;
     }
-    if (i % stride == 0 || i + 1 == rp.points.size() || q.kind == SegmentKind::transit) paths.back().emplace_back(q.x, q.y);
+    if (i % stride == 0 || i + 1 == rp.points.size() || q.kind == SegmentKind::transit)
+      paths.back().emplace_back(q.x, q.y);
   }
   if (!rp.points.empty()) {
     m.start = {rp.points.front().x, rp.points.front().y};
@@ -260,7 +261,8 @@ FigureOutput trajectory(const ResultSet& rs, const FigureOptions& opt, const std
 FigureOutput coverage(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
   const auto ids = chosen_runs(rs, opt, 5);
   if (ids.empty()) throw AnalysisError("coverage: no runs chosen");
-  if (ids.size() > 12) throw AnalysisError("coverage: at most 12 runs in one figure (" + std::to_string(ids.size()) + " chosen)");
+  if (ids.size() > 12)
+    throw AnalysisError("coverage: at most 12 runs in one figure (" + std::to_string(ids.size()) + " chosen)");
   FigureOutput out{path, csv_beside(path), {}};
   LinePlot p;
   p.title = "Coverage over time";
@@ -272,7 +274,8 @@ FigureOutput coverage(const ResultSet& rs, const FigureOptions& opt, const std::
   for (std::int64_t id : ids) {
     const std::size_t r = row_of_run(rs, id);
     const Replay rp = replay_row(rs, r);
-    if (!rp.mismatch.empty()) out.lines.push_back("warning: run " + std::to_string(id) + " replays differently: " + rp.mismatch);
+    if (!rp.mismatch.empty())
+      out.lines.push_back("warning: run " + std::to_string(id) + " replays differently: " + rp.mismatch);
     LineSeries s{run_name(rs, r, opt.by), {}, {}};
     const double free = std::max(1, rp.grid.free_cells());
     int last = -1;
@@ -411,11 +414,12 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   const bouncing_paper::CellGrid& g = a.grid;
   if (opt.policy < 0 || opt.policy > int(a.Pi.cols()))
     throw AnalysisError("--policy must be 0 (the mixture) or 1.." + std::to_string(a.Pi.cols()));
-  const Eigen::VectorXd mix = opt.policy == 0 ? Eigen::VectorXd(a.Pi * a.alpha) : Eigen::VectorXd(a.Pi.col(opt.policy - 1));
+  const Eigen::VectorXd mix =
+      opt.policy == 0 ? Eigen::VectorXd(a.Pi * a.alpha) : Eigen::VectorXd(a.Pi.col(opt.policy - 1));
   HeatmapPlot p;
   p.title = opt.policy == 0 ? "Seed 002: limiting distribution of the best mixture (x uniform)"
-                            : "Seed 002: limiting distribution of the " + format_number(so.angles[std::size_t(opt.policy - 1)]) +
-                                  "-degree policy (x uniform)";
+                            : "Seed 002: limiting distribution of the " +
+                                  format_number(so.angles[std::size_t(opt.policy - 1)]) + "-degree policy (x uniform)";
   p.xlabel = "x (m)";
   p.ylabel = "y (m)";
   p.zlabel = "pi / uniform";
@@ -437,8 +441,8 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   FigureOutput out{path, csv_beside(path), {}};
   std::ostringstream alpha;
   for (Eigen::Index k = 0; k < a.alpha.size(); ++k) alpha << (k ? ", " : "") << fmt_fixed(a.alpha(k), 3);
-  out.lines.push_back("alpha = (" + alpha.str() + "), fitted on the configurations (Eq. 5), ||Pi alpha - b|| = " +
-                      fmt_sig(a.residual, 4));
+  out.lines.push_back("alpha = (" + alpha.str() +
+                      "), fitted on the configurations (Eq. 5), ||Pi alpha - b|| = " + fmt_sig(a.residual, 4));
   csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
@@ -466,9 +470,12 @@ const std::vector<FigureKind>& figure_kinds() {
       {"line", true, line_figure},
       {"trajectory", true, trajectory},
       {"coverage", true, coverage},
-      {"cheb_histogram", false, [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_histogram(o, p); }},
-      {"cheb_lyapunov", false, [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_lyapunov(o, p); }},
-      {"seed002_limit", false, [](const ResultSet&, const FigureOptions& o, const std::string& p) { return seed002_limit(o, p); }},
+      {"cheb_histogram", false,
+       [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_histogram(o, p); }},
+      {"cheb_lyapunov", false,
+       [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_lyapunov(o, p); }},
+      {"seed002_limit", false,
+       [](const ResultSet&, const FigureOptions& o, const std::string& p) { return seed002_limit(o, p); }},
   };
   return kinds;
 }

@@ -53,7 +53,8 @@ double group_statistic(const ResultSet& rs, const std::vector<std::size_t>& rows
                        const std::string& column) {
   if (stat == "runs") return double(rows.size());
   const std::vector<std::size_t> ok = ok_rows(rs, rows);
-  if (stat == "ok_rate") return rows.empty() ? std::numeric_limits<double>::quiet_NaN() : double(ok.size()) / double(rows.size());
+  if (stat == "ok_rate")
+    return rows.empty() ? std::numeric_limits<double>::quiet_NaN() : double(ok.size()) / double(rows.size());
   std::vector<double> v;
   for (std::size_t r : ok) v.push_back(rs.num(column)[r]);
   try {

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "kernels/core/param_table.hpp"
-#include "kernels/planners/planner.hpp"
 #include "engine/run/serial_batch_evaluator.hpp"
 #include "engine/store/stored_run.hpp"
+#include "kernels/core/param_table.hpp"
+#include "kernels/planners/planner.hpp"
 
 namespace chaosweep {
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/coverage_grid.hpp"
 #include "analysis/result_set.hpp"
 #include "engine/spec/run_tuple.hpp"
+#include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/trace.hpp"
 
 namespace chaosweep {

@@ -25,7 +25,8 @@ void refuse_runs_held_twice(const std::vector<StoredColumns>& files, const std::
   };
   std::vector<Held> held;
   for (std::size_t f = 0; f < files.size(); ++f) {
-    const std::size_t spec = std::size_t(std::find(spec_hashes.begin(), spec_hashes.end(), spec_hashes[f]) - spec_hashes.begin());
+    const std::size_t spec =
+        std::size_t(std::find(spec_hashes.begin(), spec_hashes.end(), spec_hashes[f]) - spec_hashes.begin());
     for (const auto& [name, v] : files[f].numeric)
       if (name == "run_id")
         for (double id : v) held.push_back({spec, id, f});
@@ -61,8 +62,7 @@ ResultSet ResultSet::load(const std::vector<std::string>& paths) {
       files.push_back(read_all_columns(path));
       for (const auto& [name, type] : column_types(path))
         if (name == "run_id" && type != Column::Type::i64)
-          throw AnalysisError(path + ": column 'run_id' is " +
-                              (type == Column::Type::f64 ? "floating-point" : "text") +
+          throw AnalysisError(path + ": column 'run_id' is " + (type == Column::Type::f64 ? "floating-point" : "text") +
                               ", not integers (not a chaosweep result file)");
       spec_hashes.push_back(has_attribute(path, "spec_hash") ? read_attribute(path, "spec_hash") : "");
     } catch (const AnalysisError&) {
@@ -70,9 +70,8 @@ ResultSet ResultSet::load(const std::vector<std::string>& paths) {
     } catch (const std::exception& e) {
       // The store's messages name the file and what is wrong with it.
       const std::string what = e.what();
-      throw AnalysisError(what.find(path) != std::string::npos
-                              ? what
-                              : path + ": not a readable chaosweep result file (" + what + ")");
+      throw AnalysisError(
+          what.find(path) != std::string::npos ? what : path + ": not a readable chaosweep result file (" + what + ")");
     }
     // A foreign /runs (another program's table) lacks the columns every run has.
     const StoredColumns& f = files.back();
@@ -123,9 +122,11 @@ ResultSet ResultSet::from_columns(std::map<std::string, std::vector<double>> num
   ResultSet rs;
   std::size_t n = numeric.empty() ? (text.empty() ? 0 : text.begin()->second.size()) : numeric.begin()->second.size();
   for (const auto& [k, v] : numeric)
-    if (v.size() != n) throw AnalysisError("column '" + k + "' has " + std::to_string(v.size()) + " rows, not " + std::to_string(n));
+    if (v.size() != n)
+      throw AnalysisError("column '" + k + "' has " + std::to_string(v.size()) + " rows, not " + std::to_string(n));
   for (const auto& [k, v] : text)
-    if (v.size() != n) throw AnalysisError("column '" + k + "' has " + std::to_string(v.size()) + " rows, not " + std::to_string(n));
+    if (v.size() != n)
+      throw AnalysisError("column '" + k + "' has " + std::to_string(v.size()) + " rows, not " + std::to_string(n));
   rs.rows_ = n;
   rs.num_ = std::move(numeric);
   rs.text_ = std::move(text);
@@ -185,8 +186,7 @@ ResultSet ResultSet::where(const std::vector<std::string>& conditions) const {
   std::vector<bool> keep(rows_, true);
   for (const std::string& c : conditions) {
     const auto eq = c.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw AnalysisError("--where " + c + ": expected COLUMN=VALUE");
+    if (eq == std::string::npos || eq == 0) throw AnalysisError("--where " + c + ": expected COLUMN=VALUE");
     const std::string col = c.substr(0, eq), val = c.substr(eq + 1);
     std::vector<bool> match(rows_);
     std::string values;  // what the column holds, for when nothing matches
@@ -215,8 +215,8 @@ ResultSet ResultSet::where(const std::vector<std::string>& conditions) const {
   if (rows_ > 0 && std::find(keep.begin(), keep.end(), true) == keep.end()) {
     std::string all;
     for (const std::string& c : conditions) all.append(all.empty() ? "" : " ").append("--where ").append(c);
-    throw AnalysisError(all + ": no run matches them all (each alone matches some of the " +
-                        std::to_string(rows_) + " runs)");
+    throw AnalysisError(all + ": no run matches them all (each alone matches some of the " + std::to_string(rows_) +
+                        " runs)");
   }
   ResultSet out;
   out.sources_ = sources_;

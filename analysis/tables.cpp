@@ -10,11 +10,11 @@
 
 #include "analysis/grouping.hpp"
 #include "analysis/named_list.hpp"
-#include "kernels/core/param_table.hpp"
-#include "analysis/papers/chebyshev_paper.hpp"
 #include "analysis/papers/bouncing_paper.hpp"
+#include "analysis/papers/chebyshev_paper.hpp"
 #include "analysis/papers/contraction_paper.hpp"
 #include "analysis/papers/table1_readings.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 
@@ -37,8 +37,7 @@ std::vector<std::string> varying_params(const ResultSet& rs, const std::vector<s
   for (const ParamInfo& p : param_table()) cands.emplace_back(p.name);
   std::vector<std::string> out;
   for (const std::string& c : cands) {
-    if (!rs.has(c) || replicate_columns().count(c) ||
-        std::find(exclude.begin(), exclude.end(), c) != exclude.end())
+    if (!rs.has(c) || replicate_columns().count(c) || std::find(exclude.begin(), exclude.end(), c) != exclude.end())
       continue;
     std::set<std::string> seen;
     for (std::size_t r : rows) {
@@ -69,7 +68,8 @@ std::vector<RankedTuple> rank_tuples(const ResultSet& rs, const std::vector<std:
     out.push_back({std::move(g), s});
   }
   // Stable: equal scores keep the tuples' key order.
-  std::stable_sort(out.begin(), out.end(), [](const RankedTuple& a, const RankedTuple& b) { return a.score < b.score; });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const RankedTuple& a, const RankedTuple& b) { return a.score < b.score; });
   return out;
 }
 
@@ -100,8 +100,9 @@ TextTable best_table(const ResultSet& rs, const TableOptions& opt) {
       t.add_row(std::move(row));
     }
   }
-  t.notes.push_back("Tuples ranked by median CT over their runs, a run that did not reach the target counting as "
-                    "infinite; ties keep parameter order. PR = CT / T_opt.");
+  t.notes.push_back(
+      "Tuples ranked by median CT over their runs, a run that did not reach the target counting as "
+      "infinite; ties keep parameter order. PR = CT / T_opt.");
   return t;
 }
 
@@ -113,15 +114,16 @@ TextTable summary_table(const ResultSet& rs, const TableOptions& opt) {
   TextTable t;
   t.title = "Runs per group";
   t.header = by;
-  for (const char* h : {"runs", "ok", "ok rate", "CT min", "CT q1", "CT median", "CT q3", "CT max", "median PR",
-                        "median coverage"})
+  for (const char* h :
+       {"runs", "ok", "ok rate", "CT min", "CT q1", "CT median", "CT q3", "CT max", "median PR", "median coverage"})
     t.header.emplace_back(h);
   for (const Group& g : group_rows(rs, by, all_rows(rs))) {
     std::vector<Cell> row(g.key.begin(), g.key.end());
     row.push_back(std::to_string(g.rows.size()));
     row.push_back(std::to_string(ok_rows(rs, g.rows).size()));
     row.push_back(fixed_cell(group_statistic(rs, g.rows, "ok_rate"), 3));
-    for (const char* s : {"min", "q1", "median", "q3", "max"}) row.push_back(sig_cell(group_statistic(rs, g.rows, s), 5));
+    for (const char* s : {"min", "q1", "median", "q3", "max"})
+      row.push_back(sig_cell(group_statistic(rs, g.rows, s), 5));
     row.push_back(sig_cell(group_statistic(rs, g.rows, "median", "pr"), 3));
     std::vector<double> cov;
     if (rs.has("final_coverage"))
@@ -129,8 +131,9 @@ TextTable summary_table(const ResultSet& rs, const TableOptions& opt) {
     row.push_back(fixed_cell(quantile(cov, 0.5), 3));
     t.add_row(std::move(row));
   }
-  t.notes.push_back("CT quantiles over ok runs (linear interpolation, numpy's default); PR = CT / T_opt; "
-                    "median coverage: final coverage over all runs (the coverage reached when a run stopped).");
+  t.notes.push_back(
+      "CT quantiles over ok runs (linear interpolation, numpy's default); PR = CT / T_opt; "
+      "median coverage: final coverage over all runs (the coverage reached when a run stopped).");
   return t;
 }
 
@@ -156,7 +159,8 @@ std::map<std::string, std::pair<double, double>> read_paper(const std::string& p
       continue;
     }
     const auto cells = split_list(line);
-    if (cells.size() < 2) throw AnalysisError("--paper: " + path + ":" + std::to_string(n) + ": expected row,paper_ct[,paper_pr]");
+    if (cells.size() < 2)
+      throw AnalysisError("--paper: " + path + ":" + std::to_string(n) + ": expected row,paper_ct[,paper_pr]");
     try {
       out[cells[0]] = {std::stod(cells[1]), cells.size() > 2 ? std::stod(cells[2]) : nan};
     } catch (const std::exception&) {
@@ -284,8 +288,8 @@ TextTable table1(const ResultSet& rs, const TableOptions& opt) {
 
   TextTable t;
   t.title = "Table 1: best parameters per case (median CT over each tuple's runs)";
-  t.header = {"row", "technique", "map", "SR", "env", "c", "DSindex", "f", "CT (s)", "ok", "tuples",
-              "improvement %", "improvement h", "PR"};
+  t.header = {"row",    "technique",     "map",           "SR", "env", "c", "DSindex", "f", "CT (s)", "ok",
+              "tuples", "improvement %", "improvement h", "PR"};
   if (!paper.empty()) {
     t.header.emplace_back("paper CT (s)");
     t.header.emplace_back("CT / paper");
@@ -295,11 +299,13 @@ TextTable table1(const ResultSet& rs, const TableOptions& opt) {
     const double base = orig == original.end() || c.technique == "original" ? nan : orig->second;
     t.add_row(table1_row(rs, c, labelled ? c.g.key[0] : std::to_string(&c - cases.data() + 1), base, paper));
   }
-  t.notes.push_back("Per case, the parameter tuple (c, DSindex, f) with the lowest median CT over its runs "
-                    "(a run that missed the target counts as infinite); ok = its runs that reached the target; "
-                    "tuples = tuples searched.");
-  t.notes.push_back("Improvement over the best original Arnold tuple on the same map (size, SR, env); "
-                    "PR = CT / T_opt, T_opt = 0.9 free area / (SR v).");
+  t.notes.push_back(
+      "Per case, the parameter tuple (c, DSindex, f) with the lowest median CT over its runs "
+      "(a run that missed the target counts as infinite); ok = its runs that reached the target; "
+      "tuples = tuples searched.");
+  t.notes.push_back(
+      "Improvement over the best original Arnold tuple on the same map (size, SR, env); "
+      "PR = CT / T_opt, T_opt = 0.9 free area / (SR v).");
   return t;
 }
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "kernels/core/param_table.hpp"
 #include "analysis/result_set.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 
@@ -51,11 +51,27 @@ std::string tex_cell(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': case '%': case '$': case '#': case '_': case '{': case '}': out += '\\'; out += c; break;
-      case '~': out += "\\textasciitilde{}"; break;
-      case '^': out += "\\textasciicircum{}"; break;
-      case '\\': out += "\\textbackslash{}"; break;
-      default: out += c;
+      case '&':
+      case '%':
+      case '$':
+      case '#':
+      case '_':
+      case '{':
+      case '}':
+        out += '\\';
+        out += c;
+        break;
+      case '~':
+        out += "\\textasciitilde{}";
+        break;
+      case '^':
+        out += "\\textasciicircum{}";
+        break;
+      case '\\':
+        out += "\\textbackslash{}";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -64,9 +80,15 @@ std::string tex_cell(const std::string& s) {
 void write_line(std::ostream& os, const std::vector<std::string>& cells, TableFormat f) {
   for (std::size_t i = 0; i < cells.size(); ++i) {
     switch (f) {
-      case TableFormat::csv: os << (i ? "," : "") << csv_cell(cells[i]); break;
-      case TableFormat::md: os << "| " << md_cell(cells[i]) << " "; break;
-      case TableFormat::tex: os << (i ? " & " : "") << tex_cell(cells[i]); break;
+      case TableFormat::csv:
+        os << (i ? "," : "") << csv_cell(cells[i]);
+        break;
+      case TableFormat::md:
+        os << "| " << md_cell(cells[i]) << " ";
+        break;
+      case TableFormat::tex:
+        os << (i ? " & " : "") << tex_cell(cells[i]);
+        break;
     }
   }
   if (f == TableFormat::md) os << "|";

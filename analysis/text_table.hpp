@@ -22,13 +22,13 @@ struct Cell {
 };
 
 struct TextTable {
-  std::string title;                           // a caption (md/tex only)
+  std::string title;  // a caption (md/tex only)
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;  // each as long as header, as shown
   std::vector<std::vector<std::string>> full;  // per row: the CSV text where a cell has one (else empty)
   std::vector<std::string> notes;              // lines under the table (md/tex only)
 
-  void add_row(std::vector<Cell> r);           // throws when the width is wrong
+  void add_row(std::vector<Cell> r);  // throws when the width is wrong
   void write(std::ostream& os, TableFormat f) const;
   // Writes to `path` atomically: a temporary file renamed at the end.
   void write_file(const std::string& path, TableFormat f) const;

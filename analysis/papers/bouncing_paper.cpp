@@ -3,12 +3,12 @@
 #include <set>
 #include <sstream>
 
+#include "analysis/result_set.hpp"
 #include "engine/run/all_pairs_plans.hpp"
 #include "engine/spec/environment_loader.hpp"
-#include "kernels/planners/bouncing/markov_chain.hpp"
 #include "kernels/core/param_table.hpp"
+#include "kernels/planners/bouncing/markov_chain.hpp"
 #include "kernels/planners/bouncing/policy_mixture.hpp"
-#include "analysis/result_set.hpp"
 #include "kernels/planners/bouncing/roadmap.hpp"
 
 namespace chaosweep {
@@ -91,15 +91,16 @@ BouncingPaperAnalysis analyse_seed002(const BouncingPaperOptions& opt) {
   a.Pi.resize(n, k);
   Eigen::MatrixXd Pi_config(a.grid.num_configs(), k);
   for (int i = 0; i < k; ++i) {
-    const bouncing_paper::Limit lim =
-        bouncing_paper::limiting_distribution(bouncing_paper::transition_matrix(bouncing_paper::build_cell_map(a.grid, opt.angles[std::size_t(i)], opt.eps, opt.r)));
+    const bouncing_paper::Limit lim = bouncing_paper::limiting_distribution(bouncing_paper::transition_matrix(
+        bouncing_paper::build_cell_map(a.grid, opt.angles[std::size_t(i)], opt.eps, opt.r)));
     Pi_config.col(i) = lim.pi;
     a.Pi.col(i) = bouncing_paper::position_marginal(a.grid, lim.pi);
     a.persistent_groups.push_back(lim.groups);
   }
   a.by_configuration = fit_mixture(Pi_config);
   a.by_position = fit_mixture(a.Pi);
-  const BouncingPaperFit& chosen = opt.fit == BouncingPaperOptions::Fit::configurations ? a.by_configuration : a.by_position;
+  const BouncingPaperFit& chosen =
+      opt.fit == BouncingPaperOptions::Fit::configurations ? a.by_configuration : a.by_position;
   a.alpha = chosen.alpha;
   a.residual = chosen.residual;
   return a;
@@ -109,17 +110,17 @@ TextTable seed002_table(const BouncingPaperOptions& opt) {
   const BouncingPaperAnalysis a = analyse_seed002(opt);
   const bool paper = paper_setting(opt);
   TextTable t;
-  t.title = "Seed 002: bouncing policies on " + opt.env + " (" + std::to_string(a.grid.num_free()) +
-            " free cells x " + std::to_string(opt.bins) + " bins = " + std::to_string(a.grid.num_configs()) +
-            " configurations), eps " + format_number(opt.eps) + ", r " + format_number(opt.r);
+  t.title = "Seed 002: bouncing policies on " + opt.env + " (" + std::to_string(a.grid.num_free()) + " free cells x " +
+            std::to_string(opt.bins) + " bins = " + std::to_string(a.grid.num_configs()) + " configurations), eps " +
+            format_number(opt.eps) + ", r " + format_number(opt.r);
   t.header = {"quantity", "policy", "ours", "paper"};
   const std::pair<const char*, const BouncingPaperFit*> fits[] = {
       {"configurations (Eq. 5 as written: n = N)", &a.by_configuration}, {"position cells", &a.by_position}};
   for (const auto& [space, fit] : fits) {
     for (std::size_t i = 0; i < opt.angles.size(); ++i) {
       const std::string pol = format_number(opt.angles[i]) + " deg";
-      t.add_row({std::string("mixture weight alpha fitted on ") + space, pol, fixed_cell(fit->alpha(Eigen::Index(i)), 3),
-                 paper && i < 3 ? fixed_cell(paper_alpha[i], 3) : "-"});
+      t.add_row({std::string("mixture weight alpha fitted on ") + space, pol,
+                 fixed_cell(fit->alpha(Eigen::Index(i)), 3), paper && i < 3 ? fixed_cell(paper_alpha[i], 3) : "-"});
     }
     for (std::size_t i = 0; i < opt.angles.size(); ++i)
       t.add_row({std::string("||Pi e_i - b|| (the policy alone) on ") + space, format_number(opt.angles[i]) + " deg",
@@ -127,7 +128,8 @@ TextTable seed002_table(const BouncingPaperOptions& opt) {
     t.add_row({std::string("||Pi alpha - b|| (the mixture) on ") + space, "all", sig_cell(fit->residual, 4), "-"});
   }
   for (std::size_t i = 0; i < opt.angles.size(); ++i)
-    t.add_row({"persistent groups", format_number(opt.angles[i]) + " deg", std::to_string(a.persistent_groups[i]), "-"});
+    t.add_row(
+        {"persistent groups", format_number(opt.angles[i]) + " deg", std::to_string(a.persistent_groups[i]), "-"});
   // Plans: ours (opt's angles, bins, w2) and the paper's navigation setting
   // (Figs. 7-8 on its maps of Figs. 1-2: {45, 90, 135} deg, 8 orientations,
   // w2 = 100), on this map; the 8-orientation roadmap is small enough for
@@ -155,11 +157,12 @@ TextTable seed002_table(const BouncingPaperOptions& opt) {
                  fixed_cell(share[c], 2), "-"});
     t.add_row({"unreachable goals (%)", name, fixed_cell(share.back(), 2), "-"});
   }
-  t.notes.push_back("alpha >= 0, sum 1, minimises ||Pi alpha - b|| with b uniform (exact over all support sets): "
-                    "over the configurations as Eq. 5 is written (n = N), and over the free position cells (the "
-                    "policies' marginals). Plans: Dijkstra on the roadmap (w1 = 1 same policy, w2 a policy change), "
-                    "exact turns; the map is our reconstruction (docs/seed002.md), so alpha differs from the paper's, "
-                    "and the paper's plan shares (Figs. 7-8) are for its other maps (Figs. 1-2).");
+  t.notes.push_back(
+      "alpha >= 0, sum 1, minimises ||Pi alpha - b|| with b uniform (exact over all support sets): "
+      "over the configurations as Eq. 5 is written (n = N), and over the free position cells (the "
+      "policies' marginals). Plans: Dijkstra on the roadmap (w1 = 1 same policy, w2 a policy change), "
+      "exact turns; the map is our reconstruction (docs/seed002.md), so alpha differs from the paper's, "
+      "and the paper's plan shares (Figs. 7-8) are for its other maps (Figs. 1-2).");
   return t;
 }
 

@@ -7,14 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "kernels/planners/bouncing/bouncing_cells.hpp"
 #include "analysis/text_table.hpp"
+#include "kernels/planners/bouncing/bouncing_cells.hpp"
 
 namespace chaosweep {
 
 struct BouncingPaperOptions {
-  std::string env = "seed002_map";                 // environment name or file
-  int bins = 360;                                  // orientation bins (the paper: 1 degree)
+  std::string env = "seed002_map";                // environment name or file
+  int bins = 360;                                 // orientation bins (the paper: 1 degree)
   std::vector<double> angles{30.0, 75.0, 315.0};  // policies, degrees
   double eps = 5.0, r = 0.8;
   // Eq. 5's fit: over the N configuration cells ("b is the n-vector where

@@ -36,7 +36,10 @@ TextTable seed001_table() {
   const Method methods[] = {
       {"v(xy), original map", ChebTransform::none, {"0.8309", "0.8209"}, "limit 8/pi^2 = 0.8106"},
       {"v(xy), arcsine transform", ChebTransform::arcsine, {"0.6830", "0.6758"}, "limit 2/3 = 0.6667"},
-      {"v(xy), arccosine transform", ChebTransform::arccosine, {"0.6830", "0.6758"}, "= arcsine: (2/pi) acos x = 1 - (2/pi) asin x"},
+      {"v(xy), arccosine transform",
+       ChebTransform::arccosine,
+       {"0.6830", "0.6758"},
+       "= arcsine: (2/pi) acos x = 1 - (2/pi) asin x"},
   };
   const long ns[] = {2000, 10000};
   for (const Method& m : methods)

@@ -13,16 +13,14 @@ namespace {
 // The paper's Table 1 (coverage %, n = 800, headings x, y, z) by start
 // point (s, s); Table 2's mean and sample standard deviation; Table 3
 // (coverage % vs n at (10, 10), heading z); Section 6 and Figs. 15-16.
-constexpr double paper_t1[10][3] = {{56.76, 44.25, 41.25}, {66.25, 35.75, 58.50}, {27.75, 38.75, 40.75},
-                                    {38.25, 42.25, 35.25}, {34.75, 53.25, 56.00}, {39.25, 46.00, 47.50},
-                                    {33.25, 40.00, 40.50}, {43.25, 46.50, 57.00}, {54.75, 22.00, 49.00},
-                                    {60.00, 28.75, 50.25}};
+constexpr double paper_t1[10][3] = {
+    {56.76, 44.25, 41.25}, {66.25, 35.75, 58.50}, {27.75, 38.75, 40.75}, {38.25, 42.25, 35.25}, {34.75, 53.25, 56.00},
+    {39.25, 46.00, 47.50}, {33.25, 40.00, 40.50}, {43.25, 46.50, 57.00}, {54.75, 22.00, 49.00}, {60.00, 28.75, 50.25}};
 constexpr double paper_mean[3] = {45.426, 39.75, 47.60}, paper_sd[3] = {13.0405, 9.1074, 8.0062};
-const std::map<int, double> paper_t3 = {{200, 46.25},   {300, 55.75},   {500, 52.50},   {800, 54.50},
-                                        {1200, 62.50},  {1700, 59.75},  {2300, 54.75},  {3000, 49.75},
-                                        {3800, 54.00},  {4700, 55.50},  {5700, 56.50},  {6800, 58.50},
-                                        {8000, 61.50},  {9300, 66.00},  {10700, 39.75}, {12200, 16.25},
-                                        {13800, 10.00}, {15500, 10.00}, {17300, 9.75},  {19200, 9.75}};
+const std::map<int, double> paper_t3 = {{200, 46.25},   {300, 55.75},   {500, 52.50},   {800, 54.50},  {1200, 62.50},
+                                        {1700, 59.75},  {2300, 54.75},  {3000, 49.75},  {3800, 54.00}, {4700, 55.50},
+                                        {5700, 56.50},  {6800, 58.50},  {8000, 61.50},  {9300, 66.00}, {10700, 39.75},
+                                        {12200, 16.25}, {13800, 10.00}, {15500, 10.00}, {17300, 9.75}, {19200, 9.75}};
 const std::map<int, std::pair<int, double>> paper_mirror = {
     {418, {20, 12.0}}, {779, {100, 16.75}}, {3401, {500, 55.75}}, {7121, {1500, 62.5}}};
 
@@ -88,19 +86,22 @@ void add_spread(TextTable& t, const ResultSet& rs) {
                             std::to_string(v.size()) + " samples";
     t.add_row({"Table 2 (spread)", row, "mean coverage %", fixed_cell(mean, 3), fixed_cell(paper_mean[ds - 1], 3)});
     t.add_row({"Table 2 (spread)", row, "standard deviation (n - 1)",
-               fixed_cell(v.size() > 1 ? std::sqrt(ss / double(v.size() - 1)) : 0.0, 4), fixed_cell(paper_sd[ds - 1], 4)});
+               fixed_cell(v.size() > 1 ? std::sqrt(ss / double(v.size() - 1)) : 0.0, 4),
+               fixed_cell(paper_sd[ds - 1], 4)});
   }
   for (const Group& g : group_rows(rs, {"ic_jitter", "c3_n"}, part_rows(rs, "table3-spread"))) {
     std::vector<double> v;
     for (std::size_t r : g.rows) v.push_back(pct(rs, r));
     const int n = int(std::lround(g.key_num[1]));
     const auto p = paper_t3.find(n);
-    const std::string row = "n = " + std::to_string(n) + ", ic +-" + g.key[0] + ", " + std::to_string(v.size()) + " samples";
+    const std::string row =
+        "n = " + std::to_string(n) + ", ic +-" + g.key[0] + ", " + std::to_string(v.size()) + " samples";
     t.add_row({"Table 3 (spread)", row, "median coverage % [min, max]",
                fmt_fixed(value_statistic(v, "median"), 2) + " [" + fmt_fixed(value_statistic(v, "min"), 2) + ", " +
                    fmt_fixed(value_statistic(v, "max"), 2) + "]",
                p == paper_t3.end() ? "-" : fixed_cell(p->second, 2)});
-    const double collapsed = double(std::count_if(v.begin(), v.end(), [](double x) { return x <= 12.0; })) / double(v.size());
+    const double collapsed =
+        double(std::count_if(v.begin(), v.end(), [](double x) { return x <= 12.0; })) / double(v.size());
     t.add_row({"Table 3 (spread)", row, "share of samples at <= 12% (collapsed)", fixed_cell(collapsed, 3), "-"});
   }
 }
@@ -144,11 +145,13 @@ TextTable seed003_table(const ResultSet& rs) {
   add_loop(t, rs);
   add_mirror(t, rs);
   if (t.rows.empty())
-    throw AnalysisError("no seed 003 rows: give the results of experiments/seed003.toml (labels table1, table3, loop, mirror)");
-  t.notes.push_back("Read literally (docs/spec.md §4), the heading depends on the Arnold state only, so the start point merely "
-                    "translates the trajectory and nothing after Map depends on it: Table 1's ten rows are equal, "
-                    "where the paper's vary. The loop's candidates therefore come from a grid of Arnold initial "
-                    "states (docs/seed003.md).");
+    throw AnalysisError(
+        "no seed 003 rows: give the results of experiments/seed003.toml (labels table1, table3, loop, mirror)");
+  t.notes.push_back(
+      "Read literally (docs/spec.md §4), the heading depends on the Arnold state only, so the start point merely "
+      "translates the trajectory and nothing after Map depends on it: Table 1's ten rows are equal, "
+      "where the paper's vary. The loop's candidates therefore come from a grid of Arnold initial "
+      "states (docs/seed003.md).");
   return t;
 }
 

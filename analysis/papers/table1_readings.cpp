@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
-#include <cstdint>
 #include <set>
 #include <utility>
 
@@ -50,15 +50,16 @@ std::pair<double, double> bootstrap_ratio(const ResultSet& rs, const std::vector
 
 // A map has obstacles when it has fewer free cells than cells.
 bool has_obstacles(const ResultSet& rs, std::size_t r) {
-  const double cells = std::ceil(rs.num("size_x")[r] / rs.num("sr")[r]) * std::ceil(rs.num("size_y")[r] / rs.num("sr")[r]);
+  const double cells =
+      std::ceil(rs.num("size_x")[r] / rs.num("sr")[r]) * std::ceil(rs.num("size_y")[r] / rs.num("sr")[r]);
   return rs.num("free_cells")[r] < cells;
 }
 
 }  // namespace
 
 const std::vector<std::string>& reading_columns() {
-  static const std::vector<std::string> c{"obstacle_response", "transit_time", "transit_replan", "zone_goal",
-                                          "zone_order", "logistic_reset", "coverage_cells", "boundary"};
+  static const std::vector<std::string> c{"obstacle_response", "transit_time",   "transit_replan", "zone_goal",
+                                          "zone_order",        "logistic_reset", "coverage_cells", "boundary"};
   return c;
 }
 
@@ -81,8 +82,8 @@ std::string reading_name(const std::vector<std::string>& keys, const std::vector
   std::string out;
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const ParamInfo* info = find_param(keys[i]);
-    const bool is_default =
-        info && info->kind == ParamInfo::Kind::choice && values[i] == info->choices[std::size_t(info->get(RunParams{}))];
+    const bool is_default = info && info->kind == ParamInfo::Kind::choice &&
+                            values[i] == info->choices[std::size_t(info->get(RunParams{}))];
     if (!is_default) out += (out.empty() ? "" : ", ") + keys[i] + "=" + values[i];
   }
   return out.empty() ? std::string("defaults") : out;
@@ -188,9 +189,9 @@ TextTable table1_readings(const ResultSet& rs, const TableOptions& opt) {
   TextTable t;
   t.title = "Table 1 rows under readings of the paper (CT over each row's runs)";
   t.header = named ? std::vector<std::string>{"reading"} : keys;
-  for (const char* h : {"env", "row", "technique", "ok", "median CT", "min CT", "max CT", "paper CT",
-                        "paper in [min, max]", "open row", "CT / open", "paper CT / open", "ratio / paper's",
-                        "ratio / paper's, 90% interval"})
+  for (const char* h :
+       {"env", "row", "technique", "ok", "median CT", "min CT", "max CT", "paper CT", "paper in [min, max]", "open row",
+        "CT / open", "paper CT / open", "ratio / paper's", "ratio / paper's, 90% interval"})
     t.header.emplace_back(h);
   for (const Case& k : cases) {
     std::vector<Cell> row;
@@ -199,14 +200,16 @@ TextTable table1_readings(const ResultSet& rs, const TableOptions& opt) {
     add_ct_cells(row, rs, k, k.obstacles ? open_partner(cases, k) : nullptr, paper);
     t.add_row(std::move(row));
   }
-  t.notes.push_back("Per reading (the columns before env) and row: median CT over the row's runs (a run that "
-                    "missed the target counts as infinite), min and max over those that reached it; paper in "
-                    "[min, max]: the paper's CT lies within our runs' range (above our min, and below our max or "
-                    "some run timed out).");
-  t.notes.push_back("CT / open: an obstacle row's median over the median of the open-map row with the same size, "
-                    "SR, techniques and parameters, DSindex aside (the same reading's, else any: on an open map a "
-                    "reading changes only map zoning); paper CT / open: the same ratio of the paper's CTs; the "
-                    "interval: 5% and 95% of the ratio over 2000 bootstrap resamples of both rows' runs.");
+  t.notes.push_back(
+      "Per reading (the columns before env) and row: median CT over the row's runs (a run that "
+      "missed the target counts as infinite), min and max over those that reached it; paper in "
+      "[min, max]: the paper's CT lies within our runs' range (above our min, and below our max or "
+      "some run timed out).");
+  t.notes.push_back(
+      "CT / open: an obstacle row's median over the median of the open-map row with the same size, "
+      "SR, techniques and parameters, DSindex aside (the same reading's, else any: on an open map a "
+      "reading changes only map zoning); paper CT / open: the same ratio of the paper's CTs; the "
+      "interval: 5% and 95% of the ratio over 2000 bootstrap resamples of both rows' runs.");
   return t;
 }
 

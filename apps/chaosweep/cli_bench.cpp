@@ -1,9 +1,9 @@
 // `chaosweep bench`: kernel and sweep speed on this machine.
 #include <iostream>
 
-#include "engine/bench/bench.hpp"
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
+#include "engine/bench/bench.hpp"
 
 namespace chaosweep {
 
@@ -17,7 +17,8 @@ void add_bench_command(CLI::App& app, std::function<int()>& action) {
   auto json = std::make_shared<bool>(false);
   auto seconds = std::make_shared<double>(1.0);
   cmd->add_flag("--json", *json, "print one JSON object");
-  cmd->add_option("--seconds", *seconds, "minimum time per kernel measurement, over all its rounds")->check(CLI::Range(0.01, 600.0));
+  cmd->add_option("--seconds", *seconds, "minimum time per kernel measurement, over all its rounds")
+      ->check(CLI::Range(0.01, 600.0));
   auto pipeline = std::make_shared<std::string>();
   cmd->add_option("--pipeline", *pipeline,
                   "measure only this target's lane pipeline (scalar, avx2 or avx512), once, and print its ns "
@@ -28,8 +29,8 @@ void add_bench_command(CLI::App& app, std::function<int()>& action) {
       if (!pipeline->empty()) {
         const SimdTarget t = *parse_simd_target(*pipeline);
         if (!cpu_supports(t)) {
-          std::cerr << "error: --pipeline " << *pipeline << ": this CPU does not run it (best: "
-                    << to_string(best_simd_target()) << ")\n";
+          std::cerr << "error: --pipeline " << *pipeline
+                    << ": this CPU does not run it (best: " << to_string(best_simd_target()) << ")\n";
           return exit_bad_input;
         }
         std::cout << measure_width(t, *seconds) << "\n";

@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <ctime>
+#include <filesystem>
 #include <sstream>
 
 #include "kernels/core/param_table.hpp"
@@ -90,8 +90,7 @@ void apply_param_flags(const std::map<std::string, std::string>& raw, RunSpec& r
 
 std::string names_or(const std::vector<std::string>& names) {
   std::string s;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  for (std::size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
   return s;
 }
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/run_params.hpp"
 #include "engine/spec/sweep_spec.hpp"
 #include "engine/store/provenance.hpp"
+#include "kernels/core/run_params.hpp"
 
 namespace chaosweep {
 
@@ -81,6 +81,5 @@ std::string names_or(const std::vector<std::string>& names);
 // result files (none for the names `needs_results` says are computed).
 void add_name_and_results(CLI::App& cmd, std::string& name, std::vector<std::string>& files,
                           const std::vector<std::string>& names, bool (*needs_results)(const std::string&));
-
 
 }  // namespace chaosweep

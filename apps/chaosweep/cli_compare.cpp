@@ -19,8 +19,12 @@ void add_compare_command(CLI::App& app, std::function<int()>& action) {
   auto opt = std::make_shared<CompareOptions>();
   cmd->add_option("a", *a, "result file A")->required()->check(CLI::ExistingFile);
   cmd->add_option("b", *b, "result file B")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--rtol", opt->rtol, "relative tolerance for float columns")->check(not_nan())->check(CLI::Range(0.0, 1e9));
-  cmd->add_option("--atol", opt->atol, "absolute tolerance for float columns")->check(not_nan())->check(CLI::Range(0.0, 1e300));
+  cmd->add_option("--rtol", opt->rtol, "relative tolerance for float columns")
+      ->check(not_nan())
+      ->check(CLI::Range(0.0, 1e9));
+  cmd->add_option("--atol", opt->atol, "absolute tolerance for float columns")
+      ->check(not_nan())
+      ->check(CLI::Range(0.0, 1e300));
   cmd->add_option("--show", opt->show, "differences to list")->check(CLI::Range(0, 1000000));
   cmd->callback([a, b, opt, &action] {
     action = [a, b, opt]() -> int {

@@ -2,15 +2,16 @@
 #include <iostream>
 #include <memory>
 
-#include "apps/chaosweep/cli_common.hpp"
-#include "apps/chaosweep/cli_subcommands.hpp"
 #include "analysis/figures.hpp"
 #include "analysis/grouping.hpp"
+#include "apps/chaosweep/cli_common.hpp"
+#include "apps/chaosweep/cli_subcommands.hpp"
 
 namespace chaosweep {
 
 void add_figure_command(CLI::App& app, std::function<int()>& action) {
-  auto* cmd = app.add_subcommand("figure", "Draw a figure from result files (PNG, SVG, PDF or EPS) and its data as CSV");
+  auto* cmd =
+      app.add_subcommand("figure", "Draw a figure from result files (PNG, SVG, PDF or EPS) and its data as CSV");
   cmd->footer(
       "Figures (each also writes its data as CSV beside the image, FILE.csv):\n"
       "  fig6a       minimum CT over B as a colour map over (A, C); --mark A,B,C (default the\n"
@@ -41,8 +42,8 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   add_force_flag(*cmd, o->force);
   cmd->add_option("--x", o->fig.x, "heatmap: column on the x axis");
   cmd->add_option("--y", o->fig.y, "heatmap: column on the y axis");
-  auto* stat =
-      cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic, " + names_or(statistic_names()))->capture_default_str();
+  auto* stat = cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic, " + names_or(statistic_names()))
+                   ->capture_default_str();
   cmd->add_option("--mark", o->mark, "fig6a/fig6b: the tuple to mark, A,B,C");
   cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");

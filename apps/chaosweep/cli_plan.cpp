@@ -6,11 +6,11 @@
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
-#include "kernels/core/param_table.hpp"
 #include "engine/run/simd_choice.hpp"
 #include "engine/run/sweep_runner.hpp"
 #include "engine/run/thread_batch_evaluator.hpp"
 #include "engine/spec/work_bound.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 

@@ -7,13 +7,13 @@
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
-#include "engine/store/h5_store.hpp"
 #include "engine/rows/json_writer.hpp"
-#include "kernels/core/param_table.hpp"
+#include "engine/rows/trace_writer.hpp"
 #include "engine/run/serial_batch_evaluator.hpp"
 #include "engine/spec/run_tuple.hpp"
+#include "engine/store/h5_store.hpp"
 #include "engine/store/stored_run.hpp"
-#include "engine/rows/trace_writer.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 
@@ -23,8 +23,8 @@ void print_readable(const RunRow& row) {
   const RunParams& p = row.tuple.params;
   const RunResult& r = row.result;
   const auto n = [](double v) { return format_number(v); };
-  std::printf("planner         %s  (A=%s B=%s C=%s, ds_index %d, f %s, %s, %s)\n", to_string(p.planner),
-              n(p.A).c_str(), n(p.B).c_str(), n(p.C).c_str(), p.ds_index, n(p.f).c_str(), to_string(p.integrator),
+  std::printf("planner         %s  (A=%s B=%s C=%s, ds_index %d, f %s, %s, %s)\n", to_string(p.planner), n(p.A).c_str(),
+              n(p.B).c_str(), n(p.C).c_str(), p.ds_index, n(p.f).c_str(), to_string(p.integrator),
               to_string(p.boundary));
   std::printf("map             %s, %s x %s m, sr %s m, start (%s, %s)\n", row.tuple.env_spec.c_str(),
               n(p.size_x).c_str(), n(p.size_y).c_str(), n(p.sr).c_str(), n(p.start_x).c_str(), n(p.start_y).c_str());
@@ -32,13 +32,13 @@ void print_readable(const RunRow& row) {
   if (!r.message.empty()) std::printf("message         %s\n", r.message.c_str());
   if (r.status == Status::invalid) return;
   if (r.status == Status::ok)
-    std::printf("coverage_time   %.1f s to %.0f%% coverage  (T_opt %.1f s, PR %.2f)\n",
-                r.coverage_time, 100 * p.dc, r.t_opt, r.pr);
+    std::printf("coverage_time   %.1f s to %.0f%% coverage  (T_opt %.1f s, PR %.2f)\n", r.coverage_time, 100 * p.dc,
+                r.t_opt, r.pr);
   else
-    std::printf("coverage_time   not reached (%.0f%% wanted); ran %.1f s  (T_opt %.1f s)\n", 100 * p.dc,
-                r.t_end, r.t_opt);
-  std::printf("final_coverage  %.4f  (%lld of %lld free cells)\n", r.final_coverage,
-              (long long)r.visited_cells, (long long)r.free_cells);
+    std::printf("coverage_time   not reached (%.0f%% wanted); ran %.1f s  (T_opt %.1f s)\n", 100 * p.dc, r.t_end,
+                r.t_opt);
+  std::printf("final_coverage  %.4f  (%lld of %lld free cells)\n", r.final_coverage, (long long)r.visited_cells,
+              (long long)r.free_cells);
   std::printf("steps           %lld%s\n", (long long)r.steps,
               r.dt_halvings ? ("  (dt halved " + std::to_string(r.dt_halvings) + " times)").c_str() : "");
   std::printf("wall_time       %.3f s\n", r.wall_time);
@@ -140,8 +140,8 @@ void add_run_command(CLI::App& app, std::function<int()>& action) {
                                    "column, its env) and say whether every column is bit-identical")
                        ->type_name("RESULTS.h5")
                        ->check(CLI::ExistingFile);
-  auto* id_opt =
-      cmd->add_option("--run-id", *run_id, "the run_id of the row --from re-runs")->check(CLI::Range(std::int64_t(0), std::numeric_limits<std::int64_t>::max()));
+  auto* id_opt = cmd->add_option("--run-id", *run_id, "the run_id of the row --from re-runs")
+                     ->check(CLI::Range(std::int64_t(0), std::numeric_limits<std::int64_t>::max()));
   from_opt->needs(id_opt);
   id_opt->needs(from_opt);
   add_force_flag(*cmd, *force);

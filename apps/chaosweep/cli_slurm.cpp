@@ -10,11 +10,11 @@
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
+#include "apps/chaosweep/slurm_values.hpp"
+#include "engine/run/sweep_runner.hpp"
 #include "engine/spec/embedded_files.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/slurm_dir.hpp"
-#include "apps/chaosweep/slurm_values.hpp"
-#include "engine/run/sweep_runner.hpp"
 
 namespace chaosweep {
 
@@ -32,7 +32,8 @@ std::string fill_template(std::string_view text, const std::map<std::string, std
     const std::size_t end = text.find('@', at + 1);
     if (end == std::string_view::npos) throw std::runtime_error("job template: unpaired '@'");
     const auto it = values.find(std::string(text.substr(at + 1, end - at - 1)));
-    if (it == values.end()) throw std::runtime_error("job template: unknown key " + std::string(text.substr(at, end - at + 1)));
+    if (it == values.end())
+      throw std::runtime_error("job template: unknown key " + std::string(text.substr(at, end - at + 1)));
     out.append(text.substr(pos, at - pos)).append(it->second);
     pos = end + 1;
   }
@@ -89,9 +90,12 @@ struct SlurmOptions {
 
 void add_slurm_flags(CLI::App& cmd, SlurmOptions& o) {
   cmd.add_option("spec", o.spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
-  cmd.add_option("--tasks", o.tasks, "array tasks = shards, at most the spec's runs")->required()->check(CLI::Range(1, 1000000));
+  cmd.add_option("--tasks", o.tasks, "array tasks = shards, at most the spec's runs")
+      ->required()
+      ->check(CLI::Range(1, 1000000));
   cmd.add_option("-o,--dir", o.dir, "directory for scripts, logs and results")->required();
-  cmd.add_option("--concurrency", o.concurrency, "at most M tasks at once (--array=...%M)")->check(CLI::Range(0, 1000000));
+  cmd.add_option("--concurrency", o.concurrency, "at most M tasks at once (--array=...%M)")
+      ->check(CLI::Range(0, 1000000));
   cmd.add_option("--cpus", o.cpus, "cpus per task (the sweep's --threads)")->check(CLI::Range(1, 4096));
   cmd.add_option("--partition", o.partition, "sbatch --partition: NAME[,NAME...] of letters, digits, _ - .");
   cmd.add_option("--account", o.account, "sbatch --account: a NAME of letters, digits, _ - .");
@@ -127,7 +131,8 @@ SlurmJob checked_job(const SlurmOptions& o) {
   job.dir = fs::absolute(o.dir);
   require("-o", check_slurm_directive_path(job.dir.string()));
   if (!o.force && fs::exists(job.dir / "cluster.toml"))
-    throw OutputExists("-o: " + o.dir + " already holds a chaosweep slurm sweep (cluster.toml); pass --force "
+    throw OutputExists("-o: " + o.dir +
+                       " already holds a chaosweep slurm sweep (cluster.toml); pass --force "
                        "to write over its scripts (its shard files stay)");
   return job;
 }
@@ -200,7 +205,8 @@ int run_slurm(const SlurmOptions& o) {
 }  // namespace
 
 void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
-  auto* cmd = app.add_subcommand("slurm", "Write (and optionally submit) a SLURM job array that runs a sweep in shards");
+  auto* cmd =
+      app.add_subcommand("slurm", "Write (and optionally submit) a SLURM job array that runs a sweep in shards");
   cmd->footer(
       "Writes DIR/sweep.sbatch (one shard per array task, --array=0-(N-1)[%M], logs in DIR/logs),\n"
       "DIR/merge.sbatch (merges DIR/shard_*.h5 into DIR/results.h5) and DIR/cluster.toml (for\n"

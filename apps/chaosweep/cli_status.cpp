@@ -49,9 +49,10 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
       return;
     }
     c.damaged.push_back(k);
-    c.broken += name +
-                (have < 0 ? why : file.string() + " holds " + std::to_string(have) + " rows, not " + std::to_string(want)) +
-                "; remove it, then resubmit\n";
+    c.broken +=
+        name +
+        (have < 0 ? why : file.string() + " holds " + std::to_string(have) + " rows, not " + std::to_string(want)) +
+        "; remove it, then resubmit\n";
   } else if (fs::exists(fs::symlink_status(part, ec))) {
     const std::int64_t have = rows_of(part, why);
     if (have < 0) {
@@ -76,8 +77,8 @@ std::string list(const std::vector<int>& v) {
 int report(const ShardCensus& c, const ClusterPlan& plan, const std::string& dir) {
   std::cout << "sweep '" << plan.name << "': " << plan.tasks << " shards, " << plan.runs << " runs\n"
             << "finished " << c.finished.size() << ": " << list(c.finished) << "\n"
-            << "partial  " << c.partial.size() << ": " << list(c.partial) << "\n" << c.detail
-            << "missing  " << c.missing.size() << ": " << list(c.missing) << "\n";
+            << "partial  " << c.partial.size() << ": " << list(c.partial) << "\n"
+            << c.detail << "missing  " << c.missing.size() << ": " << list(c.missing) << "\n";
   if (!c.damaged.empty()) std::cout << "damaged  " << c.damaged.size() << ": " << list(c.damaged) << "\n" << c.broken;
   std::vector<int> redo = c.partial;
   redo.insert(redo.end(), c.missing.begin(), c.missing.end());
@@ -107,7 +108,8 @@ int run_status(const std::string& dir) {
 }  // namespace
 
 void add_status_command(CLI::App& app, std::function<int()>& action) {
-  auto* st = app.add_subcommand("status", "Which shards of a `chaosweep slurm` directory are finished, partial or missing");
+  auto* st =
+      app.add_subcommand("status", "Which shards of a `chaosweep slurm` directory are finished, partial or missing");
   st->footer(
       "Prints one line per shard state and the --array= list of the shards to resubmit\n"
       "(partial, missing or damaged: a shard file that cannot be read, named with the reason;\n"

@@ -75,10 +75,13 @@ int run_into(const SweepFlags& o, SweepInput& in, H5RunWriter& writer, std::int6
   const auto started = std::chrono::steady_clock::now();
   {
     ProgressReporter reporter(counters, shard_runs - skip, progress_mode(o));
-    written += run_sweep(in.spec, ThreadBatchEvaluator(threads, in.target), opt, [&](const std::vector<RunRow>& rows) {
-      writer.append(rows);
-      for (const RunRow& r : rows) summary.add(r);
-    }, &in.cache);
+    written += run_sweep(
+        in.spec, ThreadBatchEvaluator(threads, in.target), opt,
+        [&](const std::vector<RunRow>& rows) {
+          writer.append(rows);
+          for (const RunRow& r : rows) summary.add(r);
+        },
+        &in.cache);
   }
   summary.set_elapsed(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   if (written < shard_runs) {
@@ -100,11 +103,11 @@ int write_sweep(const SweepFlags& o, SweepInput& in, const SweepInputs& inputs, 
   install_sweep_signal_handlers();
   std::unique_ptr<H5RunWriter> writer;
   try {
-    writer = std::make_unique<H5RunWriter>(
-        o.out, start.resuming ? H5RunWriter::Mode::resume : H5RunWriter::Mode::create,
-        sweep_provenance(in.spec, inputs, o.spec, in.shard, threads, to_string(in.target),
-                         start.resuming ? o.out + ".partial" : ""),
-        text_widths(in.spec));
+    writer =
+        std::make_unique<H5RunWriter>(o.out, start.resuming ? H5RunWriter::Mode::resume : H5RunWriter::Mode::create,
+                                      sweep_provenance(in.spec, inputs, o.spec, in.shard, threads, to_string(in.target),
+                                                       start.resuming ? o.out + ".partial" : ""),
+                                      text_widths(in.spec));
   } catch (const std::exception& e) {
     std::cerr << "chaosweep sweep: " << e.what() << "\n";
     return exit_bad_input;  // nothing has run: the output path cannot be written
@@ -114,8 +117,8 @@ int write_sweep(const SweepFlags& o, SweepInput& in, const SweepInputs& inputs, 
     const int status = run_into(o, in, *writer, start.skip, threads, summary);
     if (status != exit_ok) return status;
   } catch (const OutOfRoom& e) {
-    std::cerr << "chaosweep sweep: " << e.what() << "\nchaosweep sweep: stopped: " << writer->rows_written()
-              << " of " << shard_runs << " runs are in " << o.out << ".partial"
+    std::cerr << "chaosweep sweep: " << e.what() << "\nchaosweep sweep: stopped: " << writer->rows_written() << " of "
+              << shard_runs << " runs are in " << o.out << ".partial"
               << "; make room, then continue with --resume\n";
     return exit_failure;
   } catch (const std::exception& e) {

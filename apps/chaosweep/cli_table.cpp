@@ -2,10 +2,10 @@
 #include <iostream>
 #include <memory>
 
-#include "apps/chaosweep/cli_common.hpp"
-#include "apps/chaosweep/cli_subcommands.hpp"
 #include "analysis/grouping.hpp"
 #include "analysis/tables.hpp"
+#include "apps/chaosweep/cli_common.hpp"
+#include "apps/chaosweep/cli_subcommands.hpp"
 
 namespace chaosweep {
 
@@ -49,7 +49,8 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--bins", o->table.bins, "seed002: orientation bins (360: the paper's 1 degree; about a minute)")
       ->check(CLI::Range(4, 3600));
   cmd->add_option("--top", o->table.top, "tuples per group (best)")->check(CLI::Range(1, 1000000));
-  cmd->add_option("--paper", o->table.paper, "table1, readings: CSV with row,paper_ct,paper_pr")->check(CLI::ExistingFile);
+  cmd->add_option("--paper", o->table.paper, "table1, readings: CSV with row,paper_ct,paper_pr")
+      ->check(CLI::ExistingFile);
   cmd->callback([o, &action] {
     action = [o]() -> int {
       return run_reporting<AnalysisError>("table", [&]() -> int {

@@ -34,8 +34,8 @@ int main(int argc, char** argv) {
               << ")\n";
     try {
       const SimdTarget t = selected_simd_target();
-      std::cout << "kernels: " << to_string(t) << " (" << lane_width(t) << " doubles per vector; best on this CPU: "
-                << to_string(best_simd_target()) << ")\n";
+      std::cout << "kernels: " << to_string(t) << " (" << lane_width(t)
+                << " doubles per vector; best on this CPU: " << to_string(best_simd_target()) << ")\n";
     } catch (const std::exception& e) {
       std::cerr << "chaosweep: " << e.what() << "\n";
       return exit_bad_input;

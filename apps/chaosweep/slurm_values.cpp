@@ -43,23 +43,29 @@ std::optional<std::string> check_name(const std::string& value, const char* what
 
 }  // namespace
 
-std::optional<std::string> check_slurm_partition(const std::string& value) { return check_name(value, "partition", true); }
+std::optional<std::string> check_slurm_partition(const std::string& value) {
+  return check_name(value, "partition", true);
+}
 std::optional<std::string> check_slurm_account(const std::string& value) { return check_name(value, "account", false); }
-std::optional<std::string> check_slurm_job_name(const std::string& value) { return check_name(value, "job name", false); }
+std::optional<std::string> check_slurm_job_name(const std::string& value) {
+  return check_name(value, "job name", false);
+}
 
 std::optional<std::string> check_slurm_time(const std::string& value) {
-  static const std::regex form(R"((\d{1,7}(:\d{1,2}){0,2})|(\d{1,5}-\d{1,2}(:\d{1,2}){0,2})|UNLIMITED|INFINITE|unlimited|infinite)");
+  static const std::regex form(
+      R"((\d{1,7}(:\d{1,2}){0,2})|(\d{1,5}-\d{1,2}(:\d{1,2}){0,2})|UNLIMITED|INFINITE|unlimited|infinite)");
   if (value.size() <= 32 && std::regex_match(value, form)) return std::nullopt;
   return refused(value,
                  "is not a SLURM time: give MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, DAYS-HOURS, "
-         "DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS (digits, e.g. 02:00:00 or 1-12) or UNLIMITED");
+                 "DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS (digits, e.g. 02:00:00 or 1-12) or UNLIMITED");
 }
 
 std::optional<std::string> check_slurm_mem(const std::string& value) {
   static const std::regex form(R"(\d{1,12}[KMGTkmgt]?)");
   if (std::regex_match(value, form)) return std::nullopt;
-  return refused(value, "is not a SLURM memory size: give a whole number with an optional unit K, M, G or T (e.g. "
-                        "4G; no unit: megabytes)");
+  return refused(value,
+                 "is not a SLURM memory size: give a whole number with an optional unit K, M, G or T (e.g. "
+                 "4G; no unit: megabytes)");
 }
 
 std::optional<std::string> check_slurm_directive_path(const std::string& value) {

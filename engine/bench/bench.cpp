@@ -1,15 +1,15 @@
 #include "engine/bench/bench.hpp"
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <unistd.h>
 
-#include "engine/store/h5_store.hpp"
 #include "engine/bench/naive_baseline.hpp"
 #include "engine/run/sweep_runner.hpp"
 #include "engine/run/thread_batch_evaluator.hpp"
+#include "engine/store/h5_store.hpp"
 
 namespace chaosweep {
 
@@ -65,7 +65,8 @@ double measure_width(SimdTarget target, double seconds) {
   const auto env = std::make_shared<const Environment>(empty_map());
   // Fewer runs for the slow portable width, so that one pass stays short.
   std::vector<RunTuple> tuples;
-  for (const RunParams& p : workload(target == SimdTarget::scalar ? 16 : 1024)) tuples.push_back({0, "empty", "", p, env});
+  for (const RunParams& p : workload(target == SimdTarget::scalar ? 16 : 1024))
+    tuples.push_back({0, "empty", "", p, env});
   std::vector<RunResult> results(tuples.size());
   const ThreadBatchEvaluator lanes(1, target);
   return ns_per_step(
@@ -117,7 +118,8 @@ double time_sweep(const SweepSpec& spec, int threads, SimdTarget target) {
   const auto t0 = clock_type::now();
   {
     H5RunWriter writer((dir / "bench.h5").string());
-    run_sweep(spec, ThreadBatchEvaluator(threads, target), SweepOptions{}, [&](const std::vector<RunRow>& rows) { writer.append(rows); });
+    run_sweep(spec, ThreadBatchEvaluator(threads, target), SweepOptions{},
+              [&](const std::vector<RunRow>& rows) { writer.append(rows); });
     writer.finish();
   }
   const double s = seconds_since(t0);
@@ -195,8 +197,8 @@ std::string bench_json(const BenchReport& r) {
                 "  \"best_vs_naive_median\": %.2f,\n"
                 "  \"sweep_runs\": %d,\n  \"sweep_runs_per_s\": %.1f,\n  \"sweep_overhead\": %.4f,\n"
                 "  \"scaling_2_threads\": %.3f,\n  \"cpu_best\": \"%s\"\n}",
-                bench_rounds, r.naive_ns_per_step, r.best_vs_naive, r.best_vs_naive_median, r.sweep_runs, r.sweep_runs_per_s, r.sweep_overhead,
-                r.scaling_2_threads, r.cpu_best.c_str());
+                bench_rounds, r.naive_ns_per_step, r.best_vs_naive, r.best_vs_naive_median, r.sweep_runs,
+                r.sweep_runs_per_s, r.sweep_overhead, r.scaling_2_threads, r.cpu_best.c_str());
   return s + buf;
 }
 

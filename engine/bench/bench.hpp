@@ -11,17 +11,17 @@ namespace chaosweep {
 struct BenchReport {
   struct Width {
     std::string target;
-    int width;                        // doubles per vector
-    double ns_per_lane_step;          // whole lane pipeline (RK4, boundary, grid, checks, refill): best round
-    double ns_per_lane_step_median;   // the median round
+    int width;                       // doubles per vector
+    double ns_per_lane_step;         // whole lane pipeline (RK4, boundary, grid, checks, refill): best round
+    double ns_per_lane_step_median;  // the median round
   };
-  std::vector<Width> widths;   // every target this CPU runs
-  double naive_ns_per_step;    // glibc sin/cos scalar baseline, best round
-  double best_vs_naive;        // naive / fastest width, best rounds
-  double best_vs_naive_median; // the same from the median rounds
-  double sweep_runs_per_s;     // whole sweep: spec, scheduling, kernels, HDF5 (1 thread)
-  double sweep_overhead;       // sweep time / kernel time - 1 (1 thread)
-  double scaling_2_threads;    // sweep time with 1 thread / with 2 threads
+  std::vector<Width> widths;    // every target this CPU runs
+  double naive_ns_per_step;     // glibc sin/cos scalar baseline, best round
+  double best_vs_naive;         // naive / fastest width, best rounds
+  double best_vs_naive_median;  // the same from the median rounds
+  double sweep_runs_per_s;      // whole sweep: spec, scheduling, kernels, HDF5 (1 thread)
+  double sweep_overhead;        // sweep time / kernel time - 1 (1 thread)
+  double scaling_2_threads;     // sweep time with 1 thread / with 2 threads
   int sweep_runs;
   std::string cpu_best;
 };

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "kernels/core/param_table.hpp"
 #include "engine/rows/run_hash.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 
@@ -47,17 +47,13 @@ std::vector<Column> make_columns() {
         break;
       case ParamInfo::Kind::integer:
         c.push_back({std::string(p.name), Type::i64, 0,
-                     [info](const RunRow& r) {
-                       return CellValue(std::int64_t(info->get(r.tuple.params)));
-                     },
-                     true});
+                     [info](const RunRow& r) { return CellValue(std::int64_t(info->get(r.tuple.params))); }, true});
         break;
       case ParamInfo::Kind::choice:
-        c.push_back({std::string(p.name), Type::text, word_size(p.choices),
-                     [info](const RunRow& r) {
-                       return CellValue(std::string(info->choices[int(info->get(r.tuple.params))]));
-                     },
-                     true});
+        c.push_back(
+            {std::string(p.name), Type::text, word_size(p.choices),
+             [info](const RunRow& r) { return CellValue(std::string(info->choices[int(info->get(r.tuple.params))])); },
+             true});
         break;
     }
   }
@@ -84,7 +80,8 @@ std::vector<Column> make_columns() {
   c.push_back(i64("subgoals", [](const RunRow& r) { return r.result.subgoals; }));
   c.push_back(i64("reflections", [](const RunRow& r) { return r.result.reflections; }));
   c.push_back(text("message", variable, [](const RunRow& r) { return r.result.message; }));
-  c.push_back(f64("wall_time", [](const RunRow& r) { return r.result.wall_time; }, false));
+  c.push_back(f64(
+      "wall_time", [](const RunRow& r) { return r.result.wall_time; }, false));
   return c;
 }
 

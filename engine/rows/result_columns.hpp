@@ -23,7 +23,7 @@ struct Column {
   // engine's own words (a choice, a status), sized to hold the longest.
   std::size_t text_size;
   std::function<CellValue(const RunRow&)> get;
-  bool deterministic;     // false for wall-clock columns: not part of a run's pure result
+  bool deterministic;  // false for wall-clock columns: not part of a run's pure result
 };
 
 const std::vector<Column>& result_columns();

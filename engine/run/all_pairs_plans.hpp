@@ -10,6 +10,6 @@
 namespace chaosweep {
 
 std::vector<bouncing_paper::PlanRow> all_pairs_plans(const bouncing_paper::Roadmap& rm, const std::vector<int>& sources,
-                                              int threads = 0);
+                                                     int threads = 0);
 
 }  // namespace chaosweep

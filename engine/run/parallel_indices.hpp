@@ -5,10 +5,10 @@
 // ThreadSanitizer, which then cannot see that the caller's writes precede
 // the workers' reads and that the workers finished before the caller reads
 // their results (tests/tsan.supp). They cost two atomic operations per call.
-#include <atomic>
-#include <cstddef>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <atomic>
+#include <cstddef>
 
 namespace chaosweep {
 

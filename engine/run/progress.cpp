@@ -42,7 +42,8 @@ std::string ProgressReporter::line(std::int64_t done, std::int64_t total, std::i
   // From the full line to the least that still says where the sweep is.
   std::snprintf(buf[0], sizeof buf[0], "%lld/%lld runs (%.1f%%), %.0f runs/s, ETA %s, %lld not ok", d, n, pct, rate,
                 eta_text.c_str(), f);
-  std::snprintf(buf[1], sizeof buf[1], "%lld/%lld %.1f%% %.0f/s ETA %s %lld not ok", d, n, pct, rate, eta_text.c_str(), f);
+  std::snprintf(buf[1], sizeof buf[1], "%lld/%lld %.1f%% %.0f/s ETA %s %lld not ok", d, n, pct, rate, eta_text.c_str(),
+                f);
   std::snprintf(buf[2], sizeof buf[2], "%lld/%lld %.1f%% ETA %s", d, n, pct, eta_text.c_str());
   std::snprintf(buf[3], sizeof buf[3], "%.1f%% ETA %s", pct, eta_text.c_str());
   // The last column stays free: a line that fills it wraps on some terminals.
@@ -53,8 +54,7 @@ std::string ProgressReporter::line(std::int64_t done, std::int64_t total, std::i
 
 ProgressReporter::ProgressReporter(const ProgressCounters& counters, std::int64_t total, ProgressMode mode,
                                    std::chrono::seconds interval)
-    : counters_(counters), total_(total), tty_(isatty(STDERR_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()) {
+    : counters_(counters), total_(total), tty_(isatty(STDERR_FILENO) != 0), start_(std::chrono::steady_clock::now()) {
   // automatic and always behave alike here; the CLI maps `-q` + auto to never.
   enabled_ = mode != ProgressMode::never;
   period_ = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(interval);

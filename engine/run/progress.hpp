@@ -38,8 +38,7 @@ class ProgressReporter {
   // width (a terminal's columns; 0: no limit) the line is shorter than it:
   // terser wordings, then fewer fields, then cut, so that it never wraps (a
   // wrapped line is not overwritten by the next, and floods the terminal).
-  static std::string line(std::int64_t done, std::int64_t total, std::int64_t failed, double seconds,
-                          int width = 0);
+  static std::string line(std::int64_t done, std::int64_t total, std::int64_t failed, double seconds, int width = 0);
 
  private:
   void loop();

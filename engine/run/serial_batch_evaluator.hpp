@@ -13,8 +13,7 @@ class SerialBatchEvaluator final : public BatchEvaluator {
   explicit SerialBatchEvaluator(TraceSink* trace = nullptr) : trace_(trace) {}
 
  private:
-  std::size_t run(std::span<const RunTuple> in, std::span<RunResult> out,
-                  const BatchObserver& observer) const override;
+  std::size_t run(std::span<const RunTuple> in, std::span<RunResult> out, const BatchObserver& observer) const override;
   TraceSink* trace_;
 };
 

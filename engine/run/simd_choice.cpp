@@ -14,8 +14,8 @@ SimdTarget selected_simd_target() {
     throw std::runtime_error(std::string("CHAOSWEEP_SIMD = '") + forced +
                              "' is not a target: must be one of scalar, avx2, avx512");
   if (!cpu_supports(*t))
-    throw std::runtime_error(std::string("CHAOSWEEP_SIMD = ") + forced + ": this CPU does not support it (best: " +
-                             to_string(best_simd_target()) + ")");
+    throw std::runtime_error(std::string("CHAOSWEEP_SIMD = ") + forced +
+                             ": this CPU does not support it (best: " + to_string(best_simd_target()) + ")");
   return *t;
 }
 

@@ -9,26 +9,25 @@
 #include <vector>
 
 #include "engine/run/batch_evaluator.hpp"
-#include "engine/spec/environment_loader.hpp"
-#include "engine/spec/shard.hpp"
 #include "engine/run/progress.hpp"
+#include "engine/spec/environment_loader.hpp"
 #include "engine/spec/run_tuple.hpp"
+#include "engine/spec/shard.hpp"
 #include "engine/spec/sweep_spec.hpp"
 
 namespace chaosweep {
 
 struct SweepOptions {
-  std::int64_t batch_size = 4096;     // runs scheduled at once: at most this many rows per sink call
+  std::int64_t batch_size = 4096;  // runs scheduled at once: at most this many rows per sink call
   // Also hand the finished runs (a run_id prefix) to the sink while a batch
   // runs, once this many seconds passed since the last hand-over (0: only
   // at the end of each batch).
   double flush_seconds = 10;
-  ProgressCounters* progress = nullptr;  // bumped as runs complete
-  int shard_index = 0, shard_count = 1;  // this process runs run_ids i with i % count == index
-  std::int64_t skip = 0;                 // runs of the shard already done (resume)
+  ProgressCounters* progress = nullptr;     // bumped as runs complete
+  int shard_index = 0, shard_count = 1;     // this process runs run_ids i with i % count == index
+  std::int64_t skip = 0;                    // runs of the shard already done (resume)
   const std::atomic<bool>* stop = nullptr;  // set by SIGINT/SIGTERM: finish runs in flight, return
 };
-
 
 using RowSink = std::function<void(const std::vector<RunRow>&)>;
 

@@ -73,11 +73,12 @@ std::string SweepSummary::text() const {
   std::string s;
   std::snprintf(buf, sizeof buf, "runs        %lld\n", (long long)runs_);
   s += buf;
-  std::snprintf(buf, sizeof buf, "ok          %lld\nfailed      %lld  (timeout %lld, stuck %lld, diverged %lld, invalid %lld, error %lld)\n",
-                (long long)count(Status::ok), (long long)(runs_ - count(Status::ok)),
-                (long long)count(Status::timeout), (long long)count(Status::stuck),
-                (long long)count(Status::diverged), (long long)count(Status::invalid),
-                (long long)count(Status::error));
+  std::snprintf(
+      buf, sizeof buf,
+      "ok          %lld\nfailed      %lld  (timeout %lld, stuck %lld, diverged %lld, invalid %lld, error %lld)\n",
+      (long long)count(Status::ok), (long long)(runs_ - count(Status::ok)), (long long)count(Status::timeout),
+      (long long)count(Status::stuck), (long long)count(Status::diverged), (long long)count(Status::invalid),
+      (long long)count(Status::error));
   s += buf;
   if (count(Status::timeout) + count(Status::stuck) > 0)
     s += "            (timeout/stuck: coverage stalled below dc within the budget, e.g. a regular orbit)\n";

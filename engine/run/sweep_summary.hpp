@@ -3,8 +3,8 @@
 // coverage time of the runs that reached dc, and the time it took.
 #include <array>
 #include <cmath>
-#include <map>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -35,7 +35,7 @@ class SweepSummary {
   std::int64_t runs_ = 0, best_id_ = -1;
   double best_time_ = NAN, elapsed_ = NAN;
   std::array<std::int64_t, 6> by_status_{};
-  std::vector<double> ok_times_;               // while there are <= exact_limit
+  std::vector<double> ok_times_;                // while there are <= exact_limit
   std::map<std::uint64_t, std::int64_t> bins_;  // after: count per bin
 };
 

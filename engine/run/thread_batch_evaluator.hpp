@@ -19,8 +19,7 @@ class ThreadBatchEvaluator final : public BatchEvaluator {
   SimdTarget target() const { return target_; }
 
  private:
-  std::size_t run(std::span<const RunTuple> in, std::span<RunResult> out,
-                  const BatchObserver& observer) const override;
+  std::size_t run(std::span<const RunTuple> in, std::span<RunResult> out, const BatchObserver& observer) const override;
   struct Arena;  // the TBB arena, kept out of this header
   std::unique_ptr<Arena> arena_;
   SimdTarget target_;

@@ -42,7 +42,7 @@ class DecimalRange {
  private:
   double start_ = 0, stop_ = 0, step_ = 0, count_ = 0;
   bool by_count_ = false, exact_ = false;
-  int exponent_ = 0;            // values are integers times 10^exponent_
+  int exponent_ = 0;                   // values are integers times 10^exponent_
   decimal_int s_ = 0, t_ = 0, p_ = 0;  // start, stop, step scaled by 10^-exponent_
 };
 

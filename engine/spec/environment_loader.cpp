@@ -1,18 +1,18 @@
 #include "engine/spec/environment_loader.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
-#include <cmath>
-#include <optional>
 #include "engine/spec/toml.hpp"
 
-#include "kernels/core/clutter.hpp"
-#include "kernels/core/param_table.hpp"
-#include "engine/spec/input_file.hpp"
 #include "engine/rows/run_hash.hpp"
 #include "engine/spec/embedded_files.hpp"
+#include "engine/spec/input_file.hpp"
+#include "kernels/core/clutter.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 
@@ -51,9 +51,7 @@ std::pair<double, double> pair_of(const toml::node& n, const std::string& file, 
 }
 
 // "[0, 10] x [0, 10] m": the map's extent, for messages.
-std::string map_bounds(const Environment& env) {
-  return "[0, " + shown(env.lx) + "] x [0, " + shown(env.ly) + "] m";
-}
+std::string map_bounds(const Environment& env) { return "[0, " + shown(env.lx) + "] x [0, " + shown(env.ly) + "] m"; }
 
 toml::table parse_toml(const std::string& text, const std::string& path) {
   try {
@@ -84,8 +82,8 @@ bool read_name_and_units(const toml::table& t, const std::string& path, Environm
       if (!u || (*u != "relative" && *u != "m"))
         fail(path, "'units' must be \"relative\" (fractions of the map side) or \"m\"");
       relative = *u == "relative";
-    } else if (key != "size" && key != "start" && key != "start_units" && key != "obstacles" &&
-               key != "description" && key != "clutter") {
+    } else if (key != "size" && key != "start" && key != "start_units" && key != "obstacles" && key != "description" &&
+               key != "clutter") {
       fail(path, "unknown key '" + key +
                      "' (allowed: name, description, units, size, start, start_units, obstacles, "
                      "clutter)");
@@ -201,9 +199,8 @@ void check_clutter(const ClutterSpec& spec, const std::string& path, const Envir
   // generator tries are a typo (1e-9 for 0.1), not a map.
   const double most = spec.occupancy * env.lx * env.ly / (spec.min_side * spec.min_side);
   if (most > max_clutter_attempts)
-    fail(path, "clutter.occupancy = " + shown(spec.occupancy) + " with squares of min_side = " +
-                   shown(spec.min_side) + " m takes up to " + shown(most) + " squares (more than " +
-                   std::to_string(max_clutter_attempts) +
+    fail(path, "clutter.occupancy = " + shown(spec.occupancy) + " with squares of min_side = " + shown(spec.min_side) +
+                   " m takes up to " + shown(most) + " squares (more than " + std::to_string(max_clutter_attempts) +
                    ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
 }
 
@@ -249,8 +246,8 @@ Environment parse_text(const std::string& text, const std::string& path, double 
   return env;
 }
 
-Environment parse_file(const std::string& path, double size_x, double size_y,
-                       std::optional<std::uint64_t> clutter_seed, InputRecord* source) {
+Environment parse_file(const std::string& path, double size_x, double size_y, std::optional<std::uint64_t> clutter_seed,
+                       InputRecord* source) {
   std::string text;
   try {
     text = read_input_file(path, "the environment file");
@@ -263,8 +260,7 @@ Environment parse_file(const std::string& path, double size_x, double size_y,
 
 }  // namespace
 
-Environment parse_environment(const std::string& text, const std::string& source_name, double size_x,
-                              double size_y) {
+Environment parse_environment(const std::string& text, const std::string& source_name, double size_x, double size_y) {
   return parse_text(text, source_name, size_x, size_y, std::nullopt);
 }
 
@@ -319,8 +315,7 @@ Environment load_environment(const std::string& spec, double size_x, double size
   return parse_file(path, size_x, size_y, seed, source);
 }
 
-std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x,
-                                                         double size_y) {
+std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x, double size_y) {
   std::lock_guard lock(mutex_);
   auto key = std::tuple{spec, size_x, size_y};
   auto it = cache_.find(key);

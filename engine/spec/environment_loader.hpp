@@ -9,8 +9,8 @@
 #include <string_view>
 #include <tuple>
 
-#include "kernels/core/environment.hpp"
 #include "engine/spec/input_file.hpp"
+#include "kernels/core/environment.hpp"
 
 namespace chaosweep {
 
@@ -19,12 +19,10 @@ namespace chaosweep {
 // file) for a map whose side is size_x x size_y unless the file fixes its own
 // size. Throws std::runtime_error naming the file and the offending key. When
 // a file is read and `source` is given, it receives the file's path and hash.
-Environment load_environment(const std::string& spec, double size_x, double size_y,
-                             InputRecord* source = nullptr);
+Environment load_environment(const std::string& spec, double size_x, double size_y, InputRecord* source = nullptr);
 // The same from the file's text (`source_name` for messages); for tools and
 // the fuzz target. Throws std::runtime_error naming the source and the key.
-Environment parse_environment(const std::string& text, const std::string& source_name, double size_x,
-                              double size_y);
+Environment parse_environment(const std::string& text, const std::string& source_name, double size_x, double size_y);
 
 // Where an environment name is looked up first: NAME.toml in the directories of
 // $CHAOSWEEP_ENV_PATH (colon-separated, the first that has it); empty if none.

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-
 namespace chaosweep {
 
 RunTuple resolve_run(std::int64_t run_id, const RunSpec& spec, EnvironmentCache& cache) {

@@ -8,9 +8,9 @@
 #include <sstream>
 #include "engine/spec/toml.hpp"
 
+#include "engine/rows/run_hash.hpp"
 #include "engine/spec/decimal_range.hpp"
 #include "kernels/core/param_table.hpp"
-#include "engine/rows/run_hash.hpp"
 #include "kernels/math/splitmix.hpp"
 
 namespace chaosweep {
@@ -23,9 +23,7 @@ constexpr double max_axis_values = 1e8;
 
 std::string fmt(double v) { return format_number(v); }
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-  throw SpecError(where + ": " + what);
-}
+[[noreturn]] void fail(const std::string& where, const std::string& what) { throw SpecError(where + ": " + what); }
 
 SpecValue to_value(const toml::node& n, const std::string& where) {
   if (n.is_integer() || n.is_floating_point()) return *n.value<double>();
@@ -189,8 +187,7 @@ Settings Sampler::at(std::int64_t i) const {
     // its place inside it, both pure functions of (seed, dimension, i).
     std::uint64_t state = d.jitter_key ^ (std::uint64_t(i) * 0xd6e8feb86659fd93ULL);
     const double u = uniform01(state);
-    const double w =
-        lhs ? (double(permute_index(std::uint64_t(i), std::uint64_t(n), d.perm_key)) + u) / double(n) : u;
+    const double w = lhs ? (double(permute_index(std::uint64_t(i), std::uint64_t(n), d.perm_key)) + u) / double(n) : u;
     if (d.choices.empty()) out.emplace_back(d.key, std::min(d.hi, d.lo + (d.hi - d.lo) * w));
     else out.emplace_back(d.key, d.choices[std::min(d.choices.size() - 1, std::size_t(w * double(d.choices.size())))]);
   }
@@ -362,7 +359,7 @@ void check_axis(const Axis& axis, const RunSpec& base, const std::string& where)
       try {
         apply_setting(scratch, key, value);
       } catch (const SpecError& e) {
-        const std::string at = axis.kind == "axis"   ? where + "[" + std::to_string(i) + "]"
+        const std::string at = axis.kind == "axis"  ? where + "[" + std::to_string(i) + "]"
                                : axis.kind == "zip" ? where + "." + key + "[" + std::to_string(i) + "]"
                                                     : where + "[" + std::to_string(i) + "]." + key;
         fail(at, e.what());
@@ -518,8 +515,8 @@ void parse_axis_sections(const toml::table& t, const std::string& at, const std:
       const std::size_t n = cols[0].second.second.size();
       for (const auto& [line, col] : cols) {
         if (col.second.size() != n)
-          fail(where, "lists must have equal lengths: '" + cols[0].second.first + "' has " + std::to_string(n) +
-                          ", '" + col.first + "' has " + std::to_string(col.second.size()));
+          fail(where, "lists must have equal lengths: '" + cols[0].second.first + "' has " + std::to_string(n) + ", '" +
+                          col.first + "' has " + std::to_string(col.second.size()));
         axis.keys.push_back(col.first);
       }
       axis.values.resize(n);
@@ -542,8 +539,8 @@ void parse_axis_sections(const toml::table& t, const std::string& at, const std:
         // Cases share their keys with one another, not with anything else.
         if (!keys.count(key)) claim(used, key, {origin + "case", true, in_part}, where + "." + key);
         keys.insert(key);
-        items.push_back({{node.source().begin.line, node.source().begin.column},
-                         {key, to_value(node, where + "." + key)}});
+        items.push_back(
+            {{node.source().begin.line, node.source().begin.column}, {key, to_value(node, where + "." + key)}});
       }
       std::stable_sort(items.begin(), items.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
       Settings settings;
@@ -595,7 +592,8 @@ SpecPart parse_part(const toml::table& t, std::size_t index, const std::string& 
   if (!name) fail(at, "needs a name (name = \"...\", unique among the spec's parts)");
   part.name = *name;
   for (std::size_t j = 0; j < names.size(); ++j)
-    if (names[j] == part.name) fail(at + ".name", "\"" + part.name + "\" is the name of an earlier part; names must be unique");
+    if (names[j] == part.name)
+      fail(at + ".name", "\"" + part.name + "\" is the name of an earlier part; names must be unique");
 
   RunSpec part_base = base;
   if (const toml::table* f = t["fixed"].as_table()) {
@@ -646,8 +644,9 @@ void check_sections(const toml::table& root, const std::string& source_name) {
     else if (const toml::array* a = node.as_array()) empty = empty && a->empty();
   }
   if (empty)
-    fail(source_name, "the spec is empty (it sets nothing): it would be one run of the default parameters; give "
-                      "[fixed] settings, [axes] or sweep.extends");
+    fail(source_name,
+         "the spec is empty (it sets nothing): it would be one run of the default parameters; give "
+         "[fixed] settings, [axes] or sweep.extends");
 }
 
 void check_sweep_keys(const toml::table& s, const std::string& source_name) {

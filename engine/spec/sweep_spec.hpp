@@ -42,8 +42,8 @@ using Settings = std::vector<std::pair<std::string, SpecValue>>;
 struct Sampler {
   struct Dim {
     std::string key;
-    double lo = 0, hi = 0;            // a {min, max} range ...
-    std::vector<SpecValue> choices;   // ... or a list to pick from
+    double lo = 0, hi = 0;           // a {min, max} range ...
+    std::vector<SpecValue> choices;  // ... or a list to pick from
     std::uint64_t perm_key = 0, jitter_key = 0;
   };
   bool lhs = true;  // Latin hypercube; false: independent uniform draws
@@ -55,9 +55,9 @@ struct Sampler {
 // An axis: one key (a plain axis), several advancing together (a [[zip]]
 // group), a list of cases ([[case]] tables, one position each), or a sample.
 struct Axis {
-  std::string kind = "axis";      // "axis", "zip", "case", "sample" or "repeat"
-  std::vector<std::string> keys;  // every key the axis sets
-  std::vector<Settings> values;   // values[i]: the settings of position i (not for samples)
+  std::string kind = "axis";               // "axis", "zip", "case", "sample" or "repeat"
+  std::vector<std::string> keys;           // every key the axis sets
+  std::vector<Settings> values;            // values[i]: the settings of position i (not for samples)
   std::shared_ptr<const Sampler> sampler;  // samples: positions computed, not stored
   std::size_t size() const { return sampler ? std::size_t(sampler->n) : values.size(); }
   // Calls f(key, value) for each setting of position i.
@@ -81,8 +81,8 @@ std::uint64_t permute_index(std::uint64_t i, std::uint64_t n, std::uint64_t key)
 // axes; a run left without a label gets the part's name as its label.
 struct SpecPart {
   std::string name;
-  Settings fixed;          // the part's own fixed settings
-  std::vector<Axis> axes;  // the part's own axes, in file order
+  Settings fixed;                 // the part's own fixed settings
+  std::vector<Axis> axes;         // the part's own axes, in file order
   std::int64_t own_size() const;  // product of the part's own axes (1 if none)
 };
 
@@ -109,10 +109,10 @@ struct SweepSpec {
   // load, without visiting every run.
   std::vector<struct MapVariant> environment_variants() const;
 
-  std::int64_t shared_size() const;                 // product of `axes` (1 if none)
-  std::int64_t part_size(std::size_t k) const;      // runs of parts[k]
-  std::int64_t part_offset(std::size_t k) const;    // run_id of parts[k]'s first run
-  std::size_t part_of(std::int64_t run_id) const;   // index of the part holding run_id (parts non-empty)
+  std::int64_t shared_size() const;                // product of `axes` (1 if none)
+  std::int64_t part_size(std::size_t k) const;     // runs of parts[k]
+  std::int64_t part_offset(std::size_t k) const;   // run_id of parts[k]'s first run
+  std::size_t part_of(std::int64_t run_id) const;  // index of the part holding run_id (parts non-empty)
 };
 
 // One of SweepSpec::environment_variants: a run, and where in the spec its
@@ -125,8 +125,7 @@ struct MapVariant {
 // `source_name` is used in messages; `dir` resolves `extends`. A spec
 // that sets nothing, or an `extends` chain that comes back to a spec of the
 // chain, is refused (SpecError).
-SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name,
-                           const std::string& dir = ".");
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name, const std::string& dir = ".");
 SweepSpec load_sweep_spec(const std::string& path);
 
 // Sets `key` (a parameter name, or size, start, ic, env, label) to v.

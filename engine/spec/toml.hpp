@@ -30,8 +30,8 @@ void check_toml_text(const std::string& text);
 #define CHAOSWEEP_TOML_NDEBUG
 #undef NDEBUG
 #endif
-#define TOML_ASSERT(expr)                               \
-  do {                                                  \
+#define TOML_ASSERT(expr)                                \
+  do {                                                   \
     if (!(expr)) ::chaosweep::toml_assert_failed(#expr); \
   } while (0)
 #include <toml++/toml.h>

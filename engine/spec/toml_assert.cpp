@@ -31,7 +31,8 @@ void check_integers(const toml::node& node, const std::string& path) {
                            " is too large: integers must lie within +-2^53 = +-9007199254740992, beyond which "
                            "they are not exact as numbers");
   } else if (const toml::table* t = node.as_table()) {
-    for (auto&& [k, child] : *t) check_integers(child, path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
+    for (auto&& [k, child] : *t)
+      check_integers(child, path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
   } else if (const toml::array* a = node.as_array()) {
     for (std::size_t j = 0; j < a->size(); ++j) check_integers(*a->get(j), path + "[" + std::to_string(j) + "]");
   }

@@ -17,7 +17,7 @@ namespace {
 // Every key run_step_bound reads, directly or through the map (env and size
 // give the free area): an axis of any other key leaves every budget as it is.
 bool sets_budget(const Axis& a) {
-  static const char* const keys[] = {"max_time", "max_pr", "dc", "sr", "v",      "planner", "dt_c",
+  static const char* const keys[] = {"max_time", "max_pr", "dc",  "sr",   "v",      "planner", "dt_c",
                                      "f",        "dt",     "env", "size", "size_x", "size_y"};
   for (const std::string& k : a.keys)
     for (const char* b : keys)

@@ -12,9 +12,9 @@
 namespace chaosweep {
 
 struct WorkBound {
-  double steps = 0;             // integration steps, at most (estimated when sampled)
-  std::int64_t evaluated = 0;   // budgets computed
-  bool sampled = false;         // some product had too many budget combinations: estimated from a sample
+  double steps = 0;            // integration steps, at most (estimated when sampled)
+  std::int64_t evaluated = 0;  // budgets computed
+  bool sampled = false;        // some product had too many budget combinations: estimated from a sample
 };
 
 // The steps a run of `p` on a map of `free_area` m^2 may take: its time

@@ -7,9 +7,9 @@
 #include <set>
 #include <stdexcept>
 
+#include "engine/rows/result_columns.hpp"
 #include "engine/store/h5_store.hpp"
 #include "kernels/core/param_table.hpp"
-#include "engine/rows/result_columns.hpp"
 
 namespace chaosweep {
 
@@ -25,7 +25,7 @@ struct Table {
   std::set<std::string> names;
 
   explicit Table(const std::string& path) {
-    check_result_columns(path);  // run_id and param_hash integers, among others
+    check_result_columns(path);                    // run_id and param_hash integers, among others
     TypedColumns file = read_typed_columns(path);  // one pass over the file
     for (const std::string& n : column_names(path)) names.insert(n);
     run_id = file.i64.at("run_id");
@@ -137,8 +137,8 @@ CompareReport compare_results(const std::string& a_path, const std::string& b_pa
     used_b[j] = true;
     ++rep.aligned;
     bool same = true;
-    const std::string who = "run_id " + std::to_string(a.run_id[i]) +
-                            (rep.by_run_id ? "" : " (B: " + std::to_string(b.run_id[j]) + ")");
+    const std::string who =
+        "run_id " + std::to_string(a.run_id[i]) + (rep.by_run_id ? "" : " (B: " + std::to_string(b.run_id[j]) + ")");
     for (const auto& [name, va] : a.f64) {
       const auto bi = b.f64.find(name);
       if (bi == b.f64.end()) continue;
@@ -186,8 +186,8 @@ CompareReport compare_results(const std::string& a_path, const std::string& b_pa
 }
 
 std::string CompareReport::text() const {
-  std::string s = std::string("aligned on ") + (by_run_id ? "run_id (same spec)" : "parameters (param_hash)") +
-                  ": " + std::to_string(aligned) + " runs, " + std::to_string(identical) + " identical, " +
+  std::string s = std::string("aligned on ") + (by_run_id ? "run_id (same spec)" : "parameters (param_hash)") + ": " +
+                  std::to_string(aligned) + " runs, " + std::to_string(identical) + " identical, " +
                   std::to_string(changed) + " changed; " + std::to_string(missing) + " only in A, " +
                   std::to_string(extra) + " only in B\n";
   for (const std::string& d : schema) s += "  " + d + "\n";

@@ -11,12 +11,12 @@
 #include <set>
 #include <stdexcept>
 
+#include "engine/spec/shard.hpp"
 #include "engine/store/h5_detail.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/input_identity.hpp"
-#include "engine/store/rollback_driver.hpp"
-#include "engine/spec/shard.hpp"
 #include "engine/store/provenance.hpp"
+#include "engine/store/rollback_driver.hpp"
 
 namespace chaosweep {
 
@@ -68,8 +68,10 @@ ShardOf shard_of(const std::string& path) {
 // same: the environment files differ (named), or `path` records none.
 std::string different_inputs(const std::string& path, const std::string& first, bool unrecorded) {
   if (unrecorded)
-    return path + " does not record its input files (written by an older chaosweep): whether its environment "
-                  "files match " + first + "'s cannot be checked";
+    return path +
+           " does not record its input files (written by an older chaosweep): whether its environment "
+           "files match " +
+           first + "'s cannot be checked";
   const std::string changes = changed_inputs(read_attribute(first, "input_files"), read_attribute(path, "input_files"));
   return path + " was made with other input files than " + first + ": " +
          (changes.empty() ? "inputs_hash differs" : changes);
@@ -152,7 +154,8 @@ void check_run_ids(const Input& in, std::int64_t runs_total) {
 std::string simd_targets(const std::vector<Input>& inputs) {
   std::string targets;
   for (const Input& in : inputs)
-    if (has_attribute(in.path, "simd_target")) targets = join_name_lists(targets, read_attribute(in.path, "simd_target"));
+    if (has_attribute(in.path, "simd_target"))
+      targets = join_name_lists(targets, read_attribute(in.path, "simd_target"));
   return targets;
 }
 
@@ -214,8 +217,9 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
   copy_attributes(inputs[0].path, file.id, {"shard", "simd_target"});
   std::string from;
   for (const Input& in : inputs) from += (from.empty() ? "" : "\n") + in.path;
-  write_text_attribute(file.id, "shard", "merged from " + std::to_string(inputs.size()) + " files of " +
-                                             std::to_string(count) + " shards");
+  write_text_attribute(
+      file.id, "shard",
+      "merged from " + std::to_string(inputs.size()) + " files of " + std::to_string(count) + " shards");
   write_text_attribute(file.id, "merged_from", from);
   write_text_attribute(file.id, "merged_at", utc_now());
   if (const std::string targets = simd_targets(inputs); !targets.empty())
@@ -239,7 +243,8 @@ std::string MergeReport::text() const {
   if (missing > 0) {
     std::string ids;
     for (std::size_t i = 0; i < first_missing.size(); ++i) ids += (i ? ", " : "") + std::to_string(first_missing[i]);
-    s += "\nmissing " + std::to_string(missing) + " runs (run_id " + ids + (missing > std::int64_t(first_missing.size()) ? ", ..." : "") + ")";
+    s += "\nmissing " + std::to_string(missing) + " runs (run_id " + ids +
+         (missing > std::int64_t(first_missing.size()) ? ", ..." : "") + ")";
     std::string shards;
     for (std::size_t i = 0; i < shards_to_rerun.size(); ++i) {
       if (i == 20) {

@@ -13,9 +13,9 @@ namespace chaosweep {
 
 struct MergeReport {
   std::int64_t runs_total = 0, rows = 0;
-  std::int64_t missing = 0;                // runs no shard holds
-  std::vector<std::int64_t> first_missing; // the smallest of them (at most 10)
-  std::vector<int> shards_to_rerun;        // shard indices holding missing runs
+  std::int64_t missing = 0;                 // runs no shard holds
+  std::vector<std::int64_t> first_missing;  // the smallest of them (at most 10)
+  std::vector<int> shards_to_rerun;         // shard indices holding missing runs
   int shard_count = 1;
   bool ok() const { return missing == 0; }
   std::string text() const;

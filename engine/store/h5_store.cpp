@@ -204,9 +204,7 @@ bool H5RunWriter::close() {
   return rc >= 0;
 }
 
-void H5RunWriter::set_attribute(const std::string& name, const std::string& value) {
-  set_attributes({{name, value}});
-}
+void H5RunWriter::set_attribute(const std::string& name, const std::string& value) { set_attributes({{name, value}}); }
 
 void H5RunWriter::set_attributes(const std::vector<Attribute>& attributes) {
   session("write attributes to", [&] {
@@ -245,8 +243,8 @@ void H5RunWriter::append(const std::vector<RunRow>& rows) {
         if (s.size() >= text_sizes_[i])
           throw std::logic_error("column '" + cols[i].name + "' of " + partial_ + " holds " +
                                  std::to_string(text_sizes_[i] - 1) + " bytes, but run " +
-                                 std::to_string(rows[r].tuple.run_id) + " has " + std::to_string(s.size()) + ": '" +
-                                 s + "'");
+                                 std::to_string(rows[r].tuple.run_id) + " has " + std::to_string(s.size()) + ": '" + s +
+                                 "'");
         std::memcpy(dst, s.data(), s.size());
       }
     }

@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "engine/rows/result_columns.hpp"
-#include "engine/store/h5_id.hpp"
 #include "engine/rows/run_row.hpp"
+#include "engine/store/h5_id.hpp"
 
 namespace chaosweep {
 

@@ -67,7 +67,8 @@ std::vector<unsigned char> read_member(const RunsDataset& runs, const std::strin
   }
   H5E_END_TRY;
   if (rc < 0)
-    input_fail("cannot read column '" + column + "' of " + path + " (the file is damaged or the column's type is foreign)");
+    input_fail("cannot read column '" + column + "' of " + path +
+               " (the file is damaged or the column's type is foreign)");
   return out;
 }
 
@@ -103,7 +104,7 @@ void append_text(std::vector<std::string>& out, const unsigned char* rows, std::
 }  // namespace
 
 hid_t open_result_file(const std::string& path) {
-  struct stat st{};
+  struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
     if (errno == ENOENT || errno == ENOTDIR) input_fail(path + " does not exist");
     input_fail(path + " cannot be read: " + std::strerror(errno));
@@ -181,7 +182,8 @@ std::vector<std::pair<std::string, Column::Type>> column_types(const std::string
 
 void check_result_columns(const std::string& path) {
   const auto types = column_types(path);
-  for (const char* key : {"run_id", "param_hash", "status", "coverage_time", "variant", "env", "size_x", "size_y", "sr"}) {
+  for (const char* key :
+       {"run_id", "param_hash", "status", "coverage_time", "variant", "env", "size_x", "size_y", "sr"}) {
     const auto it = std::find_if(types.begin(), types.end(), [&](const auto& t) { return t.first == key; });
     if (it == types.end()) input_fail(path + " has no '" + key + "' column: not a chaosweep result file");
     const bool integer = std::string(key) == "run_id" || std::string(key) == "param_hash";
@@ -250,7 +252,10 @@ void read_blocks(const std::string& path, Begin&& begin, Take&& take) {
     char* name = H5Tget_member_name(native.id, unsigned(i));
     Handle mt{H5Tget_member_type(native.id, unsigned(i)), H5Tclose};
     const H5T_class_t cls = H5Tget_class(mt.id);
-    const Member m{name, H5Tget_member_offset(native.id, unsigned(i)), H5Tget_size(mt.id), cls,
+    const Member m{name,
+                   H5Tget_member_offset(native.id, unsigned(i)),
+                   H5Tget_size(mt.id),
+                   cls,
                    cls == H5T_INTEGER && H5Tget_sign(mt.id) == H5T_SGN_2,
                    cls == H5T_STRING && H5Tis_variable_str(mt.id) > 0};
     H5free_memory(name);

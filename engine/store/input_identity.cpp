@@ -4,8 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "engine/store/h5_store.hpp"
 #include "engine/rows/run_hash.hpp"
+#include "engine/store/h5_store.hpp"
 
 namespace chaosweep {
 
@@ -97,13 +97,14 @@ void check_same_inputs(const std::string& path, const SweepInputs& now) {
   try {
     recorded = read_attribute(path, "inputs_hash");
   } catch (const std::exception&) {
-    throw std::runtime_error(path + " does not record its input files (written by an older chaosweep): its "
+    throw std::runtime_error(path +
+                             " does not record its input files (written by an older chaosweep): its "
                              "environment files cannot be checked; pass --force to start over");
   }
   if (recorded != now.hash())
-    throw std::runtime_error(path + " was made with other input files: " +
-                             (changes.empty() ? "inputs_hash differs" : changes) +
-                             "; restore them, or pass --force to start over");
+    throw std::runtime_error(
+        path + " was made with other input files: " + (changes.empty() ? "inputs_hash differs" : changes) +
+        "; restore them, or pass --force to start over");
 }
 
 }  // namespace chaosweep

@@ -50,7 +50,8 @@ OutputLock::OutputLock(const std::string& output) : path_(output + ".lock") {
     }
     // A holder that was finishing may have removed the file between our open
     // and our flock: then we hold a lock nobody else can see. Start over.
-    struct stat held{}, named{};
+    struct stat held {
+    }, named{};
     if (fstat(fd_, &held) == 0 && stat(path_.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
         held.st_dev == named.st_dev)
       break;

@@ -1,8 +1,8 @@
 #include "engine/store/rollback_driver.hpp"
 
 #include <H5FDpublic.h>
-#include <hdf5.h>
 #include <fcntl.h>
+#include <hdf5.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -155,9 +155,9 @@ struct Session {
   std::string journal;
   // Writing: bytes below `base` are journaled before they change.
   std::uint64_t base = 0;
-  int jfd = -1;                                // opened at the session's first change
+  int jfd = -1;                                  // opened at the session's first change
   std::map<std::uint64_t, std::uint64_t> saved;  // journaled ranges [start, end), disjoint
-  bool failed = false;                         // an I/O error: not committed at close
+  bool failed = false;                           // an I/O error: not committed at close
   // Reading through a pending journal: the old bytes over the file's, and
   // nothing at or past the old end (eof).
   bool viewing = false;
@@ -375,7 +375,7 @@ H5FD_t* drv_open(const char* name, unsigned flags, hid_t, haddr_t maxaddr) {
   } catch (const std::exception& e) {
     return fail(e.what());
   }
-  struct stat st{};
+  struct stat st {};
   if (::fstat(s->fd, &st) != 0) return fail(std::strerror(errno));
   s->dev = st.st_dev;
   s->ino = st.st_ino;

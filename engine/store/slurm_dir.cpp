@@ -12,7 +12,8 @@ namespace fs = std::filesystem;
 
 ClusterPlan read_cluster_plan(const fs::path& dir) {
   const fs::path file = dir / "cluster.toml";
-  if (!fs::exists(file)) throw std::runtime_error(dir.string() + " has no cluster.toml: not written by chaosweep slurm");
+  if (!fs::exists(file))
+    throw std::runtime_error(dir.string() + " has no cluster.toml: not written by chaosweep slurm");
   std::ifstream in(file);
   std::stringstream text;
   text << in.rdbuf();

@@ -4,8 +4,8 @@
 #include <bit>
 #include <cstdio>
 
-#include "kernels/core/param_table.hpp"
 #include "engine/rows/result_columns.hpp"
+#include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 

@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "engine/store/h5_store.hpp"
 #include "engine/spec/run_tuple.hpp"
 #include "engine/spec/sweep_spec.hpp"
+#include "engine/store/h5_store.hpp"
 
 namespace chaosweep {
 
 // One row's cells by column name.
 struct StoredRow {
-  std::map<std::string, double> numeric;        // floats; integers as double (exact up to 2^53)
+  std::map<std::string, double> numeric;         // floats; integers as double (exact up to 2^53)
   std::map<std::string, std::int64_t> integers;  // integer columns read exactly, where a caller has them
   std::map<std::string, std::string> text;
 };
@@ -47,7 +47,7 @@ struct ColumnDifference {
 };
 
 struct RowComparison {
-  std::vector<std::string> compared;         // the columns compared, in schema order
+  std::vector<std::string> compared;          // the columns compared, in schema order
   std::vector<ColumnDifference> differences;  // those not bit-identical
 };
 

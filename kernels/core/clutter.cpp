@@ -7,8 +7,7 @@
 
 namespace chaosweep {
 
-std::vector<Rect> generate_clutter(double lx, double ly, const ClutterSpec& spec, double start_x,
-                                   double start_y) {
+std::vector<Rect> generate_clutter(double lx, double ly, const ClutterSpec& spec, double start_x, double start_y) {
   std::vector<Rect> out;
   std::uint64_t state = spec.seed;
   const double target = spec.occupancy * lx * ly;
@@ -18,7 +17,8 @@ std::vector<Rect> generate_clutter(double lx, double ly, const ClutterSpec& spec
   // costs a few buckets, not a pass over every square (which made many
   // small squares quadratic). Buckets are at least a grown square wide.
   const double side_max = std::max({spec.max_side + 2 * g, lx / 256, ly / 256});
-  const int nbx = std::clamp(int(std::ceil(lx / side_max)), 1, 256), nby = std::clamp(int(std::ceil(ly / side_max)), 1, 256);
+  const int nbx = std::clamp(int(std::ceil(lx / side_max)), 1, 256),
+            nby = std::clamp(int(std::ceil(ly / side_max)), 1, 256);
   const double inv_x = nbx / lx, inv_y = nby / ly;
   // Non-decreasing in v: squares that overlap share a bucket.
   const auto bucket = [](double v, double inv, int n) {

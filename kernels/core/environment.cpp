@@ -174,7 +174,8 @@ std::vector<unsigned char> cells_clear_of_obstacles(const Environment& env, doub
     const auto [i0, i1] = range(x0, x1, r.x0 - fo, r.x1 + fo);
     const auto [j0, j1] = range(y0, y1, r.y0 - fo, r.y1 + fo);
     for (std::size_t j = j0; j < j1; ++j)
-      std::fill(clear.begin() + std::ptrdiff_t(j * std::size_t(nx) + i0), clear.begin() + std::ptrdiff_t(j * std::size_t(nx) + i1), 0);
+      std::fill(clear.begin() + std::ptrdiff_t(j * std::size_t(nx) + i0),
+                clear.begin() + std::ptrdiff_t(j * std::size_t(nx) + i1), 0);
   }
   return clear;
 }

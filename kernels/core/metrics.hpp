@@ -10,9 +10,7 @@ namespace chaosweep {
 
 // Back-and-forth lawnmower time to cover dc of the free area: dc*A_free/(SR*v).
 // Reproduces the PR column of Table 1 (seed 000).
-inline double t_opt(double dc, double free_area, double sr, double v) {
-  return dc * free_area / (sr * v);
-}
+inline double t_opt(double dc, double free_area, double sr, double v) { return dc * free_area / (sr * v); }
 
 // Smallest number of visited free cells k with k / free >= dc, computed
 // without trusting dc * free to round the right way.

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-
 namespace chaosweep {
 
-ObstacleIndex::ObstacleIndex(const std::vector<Rect>& obstacles, double reach) : count_(std::uint32_t(obstacles.size())) {
+ObstacleIndex::ObstacleIndex(const std::vector<Rect>& obstacles, double reach)
+    : count_(std::uint32_t(obstacles.size())) {
   if (obstacles.empty()) return;
   x0_ = y0_ = INFINITY;
   x1_ = y1_ = -INFINITY;

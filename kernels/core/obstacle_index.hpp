@@ -14,7 +14,6 @@
 
 namespace chaosweep {
 
-
 class ObstacleIndex {
  public:
   // `reach`: the side of the query boxes callers make, if known (0: buckets

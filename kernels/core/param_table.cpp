@@ -10,23 +10,23 @@ namespace {
 
 using Kind = ParamInfo::Kind;
 
-#define CW_REAL(field, lo, hi, unset_ok, help)                                  \
-  ParamInfo {                                                                   \
-    #field, help, Kind::real, lo, hi, unset_ok, {},                             \
-        [](const RunParams& p) { return double(p.field); },                     \
-        [](RunParams& p, double v) { p.field = v; }                             \
+#define CW_REAL(field, lo, hi, unset_ok, help)                                                               \
+  ParamInfo {                                                                                                \
+#field, help, Kind::real, lo, hi, unset_ok,                                                              \
+        {}, [](const RunParams& p) { return double(p.field); }, [](RunParams & p, double v) { p.field = v; } \
   }
-#define CW_INT(field, lo, hi, help)                                             \
-  ParamInfo {                                                                   \
-    #field, help, Kind::integer, lo, hi, false, {},                             \
-        [](const RunParams& p) { return double(p.field); },                     \
-        [](RunParams& p, double v) { p.field = decltype(p.field)(v); }                     \
+#define CW_INT(field, lo, hi, help)                                                                              \
+  ParamInfo {                                                                                                    \
+#field, help, Kind::integer, lo, hi, false,                                                                  \
+        {}, [](const RunParams& p) { return double(p.field); }, [](RunParams & p,                                \
+                                                                   double v) { p.field = decltype(p.field)(v); } \
   }
-#define CW_CHOICE(field, type, help, ...)                                       \
-  ParamInfo {                                                                   \
-    #field, help, Kind::choice, 0, 0, false, {__VA_ARGS__},                     \
-        [](const RunParams& p) { return double(int(p.field)); },                \
-        [](RunParams& p, double v) { p.field = type(int(v)); }                  \
+#define CW_CHOICE(field, type, help, ...)                                                                              \
+  ParamInfo {                                                                                                          \
+#field, help, Kind::choice, 0, 0, false,                                                                           \
+        {__VA_ARGS__ },                                                                                                \
+         [](const RunParams& p) { return double(int(p.field)); },                                                      \
+                                                               [](RunParams & p, double v) { p.field = type(int(v)); } \
   }
 
 std::vector<ParamInfo> make_table() {
@@ -69,8 +69,8 @@ std::vector<ParamInfo> make_table() {
       CW_INT(cheb_k, 2, 1000, "Chebyshev map order k"),
       CW_REAL(cheb_x0, -1, 1, false, "Chebyshev map initial value of the X map"),
       CW_REAL(cheb_y0, -1, 1, false, "Chebyshev map initial value of the Y map"),
-      CW_CHOICE(cheb_transform, ChebTransform, "transform of the Chebyshev orbit before mapping (Eqs. 4-5)",
-                "none", "arcsine", "arccosine"),
+      CW_CHOICE(cheb_transform, ChebTransform, "transform of the Chebyshev orbit before mapping (Eqs. 4-5)", "none",
+                "arcsine", "arccosine"),
       CW_REAL(radius, 0, 1e3, false, "Chebyshev robot radius, m (edge expansion)"),
       CW_REAL(step, 1e-4, 1e3, false, "robot step, m (Chebyshev: between interpolated points; bouncing: per move)"),
       CW_INT(loop_subgoals, 1, 1e9, "Chebyshev sub-goals per large loop (split over the rectangles by area)"),
@@ -110,17 +110,14 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(sr, 1e-3, 1e4, false, "sensing range = coverage cell side, m"),
       CW_REAL(start_x, -1e9, 1e9, true, "start X, m (unset: the environment's start)"),
       CW_REAL(start_y, -1e9, 1e9, true, "start Y, m (unset: the environment's start)"),
-      CW_CHOICE(boundary, Boundary, "wall handling: Eq. 7 mirror or unfolded-plane fold",
-                "mirror", "fold"),
+      CW_CHOICE(boundary, Boundary, "wall handling: Eq. 7 mirror or unfolded-plane fold", "mirror", "fold"),
       CW_CHOICE(obstacle_response, ObstacleResponse,
                 "obstacle faces (Eq. 8): push the point onto the face + fo, mirror it about that line, or "
                 "mirror it and reverse the motion along that axis (a bounce)",
                 "push", "mirror", "reflect"),
-      CW_CHOICE(integrator, Integrator, "fixed-step RK4 or RK4 with step doubling", "rk4",
-                "rk4-doubling"),
-      CW_CHOICE(sampling, Sampling,
-                "cells visited: by the segment between samples, or by the samples only",
-                "segments", "points"),
+      CW_CHOICE(integrator, Integrator, "fixed-step RK4 or RK4 with step doubling", "rk4", "rk4-doubling"),
+      CW_CHOICE(sampling, Sampling, "cells visited: by the segment between samples, or by the samples only", "segments",
+                "points"),
       CW_CHOICE(coverage_cells, CoverageCells,
                 "what coverage counts: visited free cells of the free cells, or (all) visited free cells plus "
                 "obstacle cells of all cells (Eq. 5's c_T = all cells)",
@@ -128,8 +125,7 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(dc, 1e-6, 1, false, "desired coverage, fraction of free cells (coverage_cells = all: of all cells)"),
       CW_REAL(max_time, 0, 1e10, false, "robot-time budget, s (0: max_pr * T_opt)"),
       CW_REAL(max_pr, 1e-3, 1e6, false, "budget in multiples of T_opt when max_time = 0"),
-      CW_REAL(stuck_time, 0, 1e10, false,
-              "end as stuck after this long without a new cell, s (0: never)"),
+      CW_REAL(stuck_time, 0, 1e10, false, "end as stuck after this long without a new cell, s (0: never)"),
       CW_INT(niter, 1, 1e9, "points per segment (SystemScaler call)"),
       CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter, logistic_jitter)"),
   };
@@ -156,8 +152,8 @@ std::string ParamInfo::range_text() const {
     for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : " ") + std::string(choices[i]);
     return s;
   }
-  std::string s = std::string(kind == Kind::integer ? "an integer" : "a number") + " in [" +
-                  format_number(lo) + ", " + format_number(hi) + "]";
+  std::string s = std::string(kind == Kind::integer ? "an integer" : "a number") + " in [" + format_number(lo) + ", " +
+                  format_number(hi) + "]";
   return s;
 }
 
@@ -212,27 +208,38 @@ std::string variant_name(const RunParams& p) {
 
 const char* to_string(Planner v) {
   switch (v) {
-    case Planner::arnold: return "arnold";
-    case Planner::logistic: return "logistic";
-    case Planner::chebyshev: return "chebyshev";
-    case Planner::contraction: return "contraction";
-    case Planner::bouncing: return "bouncing";
+    case Planner::arnold:
+      return "arnold";
+    case Planner::logistic:
+      return "logistic";
+    case Planner::chebyshev:
+      return "chebyshev";
+    case Planner::contraction:
+      return "contraction";
+    case Planner::bouncing:
+      return "bouncing";
   }
   return "?";
 }
 const char* to_string(ContractionMode v) {
   switch (v) {
-    case ContractionMode::map: return "map";
-    case ContractionMode::loop: return "loop";
-    case ContractionMode::mirror: return "mirror";
+    case ContractionMode::map:
+      return "map";
+    case ContractionMode::loop:
+      return "loop";
+    case ContractionMode::mirror:
+      return "mirror";
   }
   return "?";
 }
 const char* to_string(ChebTransform v) {
   switch (v) {
-    case ChebTransform::none: return "none";
-    case ChebTransform::arcsine: return "arcsine";
-    case ChebTransform::arccosine: return "arccosine";
+    case ChebTransform::none:
+      return "none";
+    case ChebTransform::arcsine:
+      return "arcsine";
+    case ChebTransform::arccosine:
+      return "arccosine";
   }
   return "?";
 }
@@ -241,24 +248,36 @@ const char* to_string(Integrator v) { return v == Integrator::rk4 ? "rk4" : "rk4
 const char* to_string(Sampling v) { return v == Sampling::segments ? "segments" : "points"; }
 const char* to_string(SegmentKind v) {
   switch (v) {
-    case SegmentKind::start: return "start";
-    case SegmentKind::arnold: return "arnold";
-    case SegmentKind::transit: return "transit";
-    case SegmentKind::logistic: return "logistic";
-    case SegmentKind::chebyshev: return "chebyshev";
-    case SegmentKind::subgoal: return "subgoal";
+    case SegmentKind::start:
+      return "start";
+    case SegmentKind::arnold:
+      return "arnold";
+    case SegmentKind::transit:
+      return "transit";
+    case SegmentKind::logistic:
+      return "logistic";
+    case SegmentKind::chebyshev:
+      return "chebyshev";
+    case SegmentKind::subgoal:
+      return "subgoal";
   }
   return "?";
 }
 
 const char* to_string(Status v) {
   switch (v) {
-    case Status::ok: return "ok";
-    case Status::timeout: return "timeout";
-    case Status::diverged: return "diverged";
-    case Status::stuck: return "stuck";
-    case Status::invalid: return "invalid";
-    case Status::error: return "error";
+    case Status::ok:
+      return "ok";
+    case Status::timeout:
+      return "timeout";
+    case Status::diverged:
+      return "diverged";
+    case Status::stuck:
+      return "stuck";
+    case Status::invalid:
+      return "invalid";
+    case Status::error:
+      return "error";
   }
   return "?";
 }

@@ -17,10 +17,10 @@ struct ParamInfo {
   std::string_view name;
   std::string_view help;
   Kind kind;
-  double lo, hi;                         // inclusive bounds (real, integer)
-  bool may_be_unset;                     // NaN means "take the default from elsewhere"
-  std::vector<std::string_view> choices; // names of a choice's values, by index
-  double (*get)(const RunParams&);       // a choice reads as its index
+  double lo, hi;                          // inclusive bounds (real, integer)
+  bool may_be_unset;                      // NaN means "take the default from elsewhere"
+  std::vector<std::string_view> choices;  // names of a choice's values, by index
+  double (*get)(const RunParams&);        // a choice reads as its index
   void (*set)(RunParams&, double);
 
   // Empty when v is allowed, else a message naming the parameter and its range.

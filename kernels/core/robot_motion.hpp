@@ -14,10 +14,17 @@ namespace chaosweep {
 class RobotMotion {
  public:
   RobotMotion(const RunParams& p, const Environment& env, CoverageGrid& grid)
-      : env_(env), grid_(grid), boundary_(p.boundary), sampling_(p.sampling),
+      : env_(env),
+        grid_(grid),
+        boundary_(p.boundary),
+        sampling_(p.sampling),
         mirror_(p.obstacle_response != ObstacleResponse::push),
-        reflect_(p.obstacle_response == ObstacleResponse::reflect), fo_(p.fo),
-        x_(p.start_x), y_(p.start_y), ux_(p.start_x), uy_(p.start_y) {
+        reflect_(p.obstacle_response == ObstacleResponse::reflect),
+        fo_(p.fo),
+        x_(p.start_x),
+        y_(p.start_y),
+        ux_(p.start_x),
+        uy_(p.start_y) {
     grid_.mark_point(x_, y_);
   }
 
@@ -92,8 +99,8 @@ class RobotMotion {
   bool mirror_, reflect_;  // obstacle_response (see ObstacleResponse)
   double fo_;
   double sx_ = 1.0, sy_ = 1.0;  // reflect: the signs the displacement takes (a bounce reverses one)
-  double x_, y_;    // position in the map
-  double ux_, uy_;  // unfolded position (fold boundary only)
+  double x_, y_;                // position in the map
+  double ux_, uy_;              // unfolded position (fold boundary only)
 };
 
 }  // namespace chaosweep

@@ -48,15 +48,15 @@ struct RunParams {
   // Arnold flow coefficients and initial state (docs/spec.md §2 defaults).
   double A = 0.5, B = 0.25, C = 0.25;
   double ic_x = 0.0, ic_y = 1.0, ic_z = 0.0;
-  int ds_index = 3;      // heading = x (1), y (2) or z (3)
-  double f = 1.0;        // scaling factor (1 = no scaling)
-  double v = 1.0;        // robot speed, m/s
-  double dt = 0.1;       // initial integration step, s
-  double ep = 1e-6;      // step-doubling tolerance, m
-  double dt_min = 1e-9;  // step doubling below this step ends the run as diverged, s
-  double fo = 0.5;       // boundary/obstacle offset, m
-  double size_x = 50.0, size_y = 50.0;  // map sides, m (an environment may fix them)
-  double sr = 1.0;       // sensing range = cell side, m
+  int ds_index = 3;                         // heading = x (1), y (2) or z (3)
+  double f = 1.0;                           // scaling factor (1 = no scaling)
+  double v = 1.0;                           // robot speed, m/s
+  double dt = 0.1;                          // initial integration step, s
+  double ep = 1e-6;                         // step-doubling tolerance, m
+  double dt_min = 1e-9;                     // step doubling below this step ends the run as diverged, s
+  double fo = 0.5;                          // boundary/obstacle offset, m
+  double size_x = 50.0, size_y = 50.0;      // map sides, m (an environment may fix them)
+  double sr = 1.0;                          // sensing range = cell side, m
   double start_x = unset, start_y = unset;  // unset: the environment's start, else (fo, fo)
   Boundary boundary = Boundary::mirror;
   ObstacleResponse obstacle_response = ObstacleResponse::push;
@@ -72,14 +72,14 @@ struct RunParams {
   // Control techniques (seed 000, Algorithm 1); scaling is f != 1.
   int index_switching = 0;  // 1: switch DSindex when a segment adds <= switch_min_new cells
   int switch_min_new = 0;
-  int map_zoning = 0;       // 1: MapZoning when Eq. 5 fails
-  double c = 0.25;          // Eq. 5 coefficient
+  int map_zoning = 0;  // 1: MapZoning when Eq. 5 fails
+  double c = 0.25;     // Eq. 5 coefficient
   int zones_x = 4, zones_y = 4;
   ZoneGoal zone_goal = ZoneGoal::free_cell;  // where a transit to a zone goes
   ZoneOrder zone_order = ZoneOrder::automatic;
-  int th = 0;               // transit attempts per zone; 0 = auto (10 * L / 50)
-  int dnh = 5;              // th grows by dnh when every zone failed
-  double dt_c = 0.1;        // transit / Logistic step, s
+  int th = 0;         // transit attempts per zone; 0 = auto (10 * L / 50)
+  int dnh = 5;        // th grows by dnh when every zone failed
+  double dt_c = 0.1;  // transit / Logistic step, s
   TransitTime transit_time = TransitTime::points;
   TransitReplan transit_replan = TransitReplan::fresh;
   double logistic_r = 4.0, logistic_x0 = 0.1;
@@ -133,16 +133,16 @@ struct RunResult {
   std::int64_t visited_cells = 0;
   std::int64_t dt_halvings = 0;  // step-doubling halvings
   double final_x = unset, final_y = unset;
-  std::int64_t segments = 0;        // Arnold / Logistic segments run; Chebyshev large loops
+  std::int64_t segments = 0;  // Arnold / Logistic segments run; Chebyshev large loops
   std::int64_t index_switches = 0;
-  std::int64_t zonings = 0;         // MapZoning calls
-  std::int64_t transits = 0;        // transits that reached their zone midpoint
-  std::int64_t zones_dropped = 0;   // zones given up after th attempts
-  std::int64_t transit_points = 0;  // mapped points walked on transits
+  std::int64_t zonings = 0;           // MapZoning calls
+  std::int64_t transits = 0;          // transits that reached their zone midpoint
+  std::int64_t zones_dropped = 0;     // zones given up after th attempts
+  std::int64_t transit_points = 0;    // mapped points walked on transits
   std::int64_t transit_attempts = 0;  // transit points pushed out of an obstacle (Eq. 8)
   int final_ds_index = 0;
-  std::int64_t subgoals = 0;        // Chebyshev sub-goals reached
-  std::int64_t reflections = 0;     // seed 003 mirror mapping; seed 002 bumps
+  std::int64_t subgoals = 0;     // Chebyshev sub-goals reached
+  std::int64_t reflections = 0;  // seed 003 mirror mapping; seed 002 bumps
   double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
   std::string message;           // why a run is invalid / errored
 };

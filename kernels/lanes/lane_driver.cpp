@@ -14,9 +14,7 @@ namespace chaosweep {
 
 LaneSink::~LaneSink() = default;
 
-bool lane_eligible(const RunParams& p) {
-  return p.planner == Planner::arnold && p.integrator == Integrator::rk4;
-}
+bool lane_eligible(const RunParams& p) { return p.planner == Planner::arnold && p.integrator == Integrator::rk4; }
 
 namespace {
 
@@ -41,7 +39,8 @@ void run_scalar(const BatchItem& it, RunResult& r) {
 
 class LaneDriver final : public LaneSink {
  public:
-  LaneDriver(RunQueue& queue, int lanes) : q_(queue), items_(queue.items), results_(queue.results), slots_(std::size_t(lanes)) {
+  LaneDriver(RunQueue& queue, int lanes)
+      : q_(queue), items_(queue.items), results_(queue.results), slots_(std::size_t(lanes)) {
     a_.lanes = lanes;
     for (int l = 0; l < lanes; ++l) load(l);
     active_ = any_active();
@@ -177,9 +176,15 @@ void run_queue(RunQueue& queue, SimdTarget target) {
   LaneDriver driver(queue, lane_count(target));
   if (!driver.any_active()) return;
   switch (target) {
-    case SimdTarget::scalar: integrate_lanes_scalar(driver.arrays(), driver); break;
-    case SimdTarget::avx2: integrate_lanes_avx2(driver.arrays(), driver); break;
-    case SimdTarget::avx512: integrate_lanes_avx512(driver.arrays(), driver); break;
+    case SimdTarget::scalar:
+      integrate_lanes_scalar(driver.arrays(), driver);
+      break;
+    case SimdTarget::avx2:
+      integrate_lanes_avx2(driver.arrays(), driver);
+      break;
+    case SimdTarget::avx512:
+      integrate_lanes_avx512(driver.arrays(), driver);
+      break;
   }
 }
 

@@ -5,9 +5,9 @@
 // step's common case (fast_path, mark_entered) until a step leaves the sink
 // work, store, let the sink handle it. Include only from
 // lane_kernel_<target>.cpp.
-#include "kernels/systems/arnold_flow.hpp"
 #include "kernels/core/boundary.hpp"
 #include "kernels/lanes/lane_arrays.hpp"
+#include "kernels/systems/arnold_flow.hpp"
 
 namespace chaosweep {
 
@@ -84,10 +84,10 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passe
   auto entered = ok & (fast == lane::splat<V>(2.0)) & (lane::fma(di, di, dj * dj) == one);
   if constexpr (General) {  // the step must end where Eq. 8 moves nothing
     quiet = quiet & (lane_load<V>(a.clear_here + o) == one);
-    const V target = lane::select(di == one, lane_load<V>(a.clear_right + o),
-                                  lane::select(di == -one, lane_load<V>(a.clear_left + o),
-                                               lane::select(dj == one, lane_load<V>(a.clear_up + o),
-                                                            lane_load<V>(a.clear_down + o))));
+    const V target = lane::select(
+        di == one, lane_load<V>(a.clear_right + o),
+        lane::select(di == -one, lane_load<V>(a.clear_left + o),
+                     lane::select(dj == one, lane_load<V>(a.clear_up + o), lane_load<V>(a.clear_down + o))));
     entered = entered & (target == one);
   }
   const auto applied = quiet | entered;
@@ -195,11 +195,9 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
       }
       if (lane::all(wk[0].small & wk[1].small))
         rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
-      else
-        rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
+      else rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
     } else {
-      for (int k = 0; k < N; ++k)
-        s[k] = rk4_step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
+      for (int k = 0; k < N; ++k) s[k] = rk4_step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
     }
     unsigned entered = 0;
     d.applied = 0;
@@ -231,8 +229,7 @@ template <class V, int N, bool Staged = false>
   for (;;) {
     bool general = false;
     for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.clear[l] != nullptr;
-    const StepsDone d =
-        general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
+    const StepsDone d = general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
     count_steps<V>(a, d.passes, d.applied);
     a.flagged = d.flagged;
     a.covered = d.covered;

@@ -4,9 +4,12 @@ namespace chaosweep {
 
 const char* to_string(SimdTarget t) {
   switch (t) {
-    case SimdTarget::scalar: return "scalar";
-    case SimdTarget::avx2: return "avx2";
-    case SimdTarget::avx512: return "avx512";
+    case SimdTarget::scalar:
+      return "scalar";
+    case SimdTarget::avx2:
+      return "avx2";
+    case SimdTarget::avx512:
+      return "avx512";
   }
   return "?";
 }
@@ -26,9 +29,12 @@ int lane_count(SimdTarget t) { return t == SimdTarget::scalar ? 4 : 2 * lane_wid
 bool cpu_supports(SimdTarget t) {
   __builtin_cpu_init();
   switch (t) {
-    case SimdTarget::scalar: return true;
-    case SimdTarget::avx2: return __builtin_cpu_supports("x86-64-v3");
-    case SimdTarget::avx512: return __builtin_cpu_supports("x86-64-v4");
+    case SimdTarget::scalar:
+      return true;
+    case SimdTarget::avx2:
+      return __builtin_cpu_supports("x86-64-v3");
+    case SimdTarget::avx512:
+      return __builtin_cpu_supports("x86-64-v4");
   }
   return false;
 }

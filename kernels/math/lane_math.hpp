@@ -17,7 +17,9 @@ using int1 = std::int64_t;
 template <class T>
 inline T splat(double v);
 template <>
-inline double splat<double>(double v) { return v; }
+inline double splat<double>(double v) {
+  return v;
+}
 
 inline double fma(double a, double b, double c) { return std::fma(a, b, c); }
 

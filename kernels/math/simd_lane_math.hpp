@@ -14,7 +14,9 @@ namespace chaosweep::lane {
 using v4d = double __attribute__((vector_size(32)));
 using v4l = decltype(v4d{} < v4d{});  // the mask type comparisons yield
 template <>
-inline v4d splat<v4d>(double v) { return _mm256_set1_pd(v); }
+inline v4d splat<v4d>(double v) {
+  return _mm256_set1_pd(v);
+}
 inline v4d fma(v4d a, v4d b, v4d c) { return _mm256_fmadd_pd(a, b, c); }
 inline v4d round_even(v4d x) {
   const v4d magic = splat<v4d>(0x1.8p52);
@@ -48,7 +50,9 @@ inline v4d trunc(v4d x) { return _mm256_round_pd(x, _MM_FROUND_TO_ZERO | _MM_FRO
 using v8d = double __attribute__((vector_size(64)));
 using v8l = decltype(v8d{} < v8d{});
 template <>
-inline v8d splat<v8d>(double v) { return _mm512_set1_pd(v); }
+inline v8d splat<v8d>(double v) {
+  return _mm512_set1_pd(v);
+}
 inline v8d fma(v8d a, v8d b, v8d c) { return _mm512_fmadd_pd(a, b, c); }
 inline v8d round_even(v8d x) {
   const v8d magic = splat<v8d>(0x1.8p52);

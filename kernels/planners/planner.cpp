@@ -3,13 +3,13 @@
 #include <cmath>
 #include <sstream>
 
-#include "kernels/planners/bouncing/bouncing_run.hpp"
-#include "kernels/planners/chebyshev/chebyshev_run.hpp"
-#include "kernels/planners/contraction/contraction_run.hpp"
-#include "kernels/planners/arnold/planner_run.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
+#include "kernels/planners/arnold/planner_run.hpp"
+#include "kernels/planners/bouncing/bouncing_run.hpp"
+#include "kernels/planners/chebyshev/chebyshev_run.hpp"
+#include "kernels/planners/contraction/contraction_run.hpp"
 
 namespace chaosweep {
 
@@ -24,19 +24,18 @@ std::string validate_run(const RunParams& p, const Environment& env) {
   if (std::string e = check_ranges(p); !e.empty()) return e;
   if (!(env.lx > 0 && env.ly > 0)) return "environment '" + env.name + "' has no area";
   if ((env.lx / p.sr) * (env.ly / p.sr) > max_cells)
-    return "sr = " + fmt(p.sr) + " gives more than 2^28 cells on a " + fmt(env.lx) + " x " +
-           fmt(env.ly) + " m map: raise sr or shrink the map";
+    return "sr = " + fmt(p.sr) + " gives more than 2^28 cells on a " + fmt(env.lx) + " x " + fmt(env.ly) +
+           " m map: raise sr or shrink the map";
   if (p.boundary == Boundary::mirror && !(2 * p.fo < env.lx && 2 * p.fo < env.ly))
-    return "fo = " + fmt(p.fo) + " must be less than half the map side (" +
-           fmt(std::min(env.lx, env.ly) / 2) + ")";
+    return "fo = " + fmt(p.fo) + " must be less than half the map side (" + fmt(std::min(env.lx, env.ly) / 2) + ")";
   if (!(std::isfinite(p.start_x) && std::isfinite(p.start_y)))
     return "start is unset: give start_x/start_y or an environment with a start";
   if (p.start_x < 0 || p.start_x > env.lx || p.start_y < 0 || p.start_y > env.ly)
-    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") is outside the map [0, " +
-           fmt(env.lx) + "] x [0, " + fmt(env.ly) + "]";
+    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") is outside the map [0, " + fmt(env.lx) + "] x [0, " +
+           fmt(env.ly) + "]";
   if (int k = env.obstacle_at(p.start_x, p.start_y); k >= 0)
-    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") lies inside obstacle #" +
-           std::to_string(k) + " of environment '" + env.name + "'";
+    return "start (" + fmt(p.start_x) + ", " + fmt(p.start_y) + ") lies inside obstacle #" + std::to_string(k) +
+           " of environment '" + env.name + "'";
   if (p.planner == Planner::chebyshev) return validate_chebyshev(p, env);
   if (p.planner == Planner::contraction) return validate_contraction(p, env);
   if (p.planner == Planner::bouncing) return validate_bouncing(p);

@@ -20,9 +20,13 @@ struct Vec3 {
   T x, y, z;
 };
 template <class T>
-inline Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3<T> operator+(const Vec3<T>& a, const Vec3<T>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
 template <class T>
-inline Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3<T> operator-(const Vec3<T>& a, const Vec3<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 
 // Sines and cosines of the three Arnold coordinates: the right-hand side and the
 // heading both come from these, so each RK4 stage needs exactly three sincos.
@@ -111,7 +115,7 @@ inline void sincos_shift(T su, T cu, T d, T& s, T& c) {
     pc = fma(d2, splat<T>(2.4796075379955032e-05), splat<T>(-0.0013888888620835391));
     pc = fma(pc, d2, splat<T>(1.0 / 24.0));
   }
-  const T sd = fma(d * d2, ps, d);             // sin d
+  const T sd = fma(d * d2, ps, d);                // sin d
   const T cm = d2 * fma(pc, d2, splat<T>(-0.5));  // cos d - 1
   s = fma(su, cm, fma(cu, sd, su));
   c = fma(cu, cm, fma(-su, sd, cu));
@@ -169,9 +173,13 @@ inline T heading_sin(const Trig3<T>& t, const HeadingSelect<T>& h) {
 // DSindex coordinate sits in z (to_lane below) and need no selection.
 struct HeadingZ {};
 template <class T>
-inline T heading_cos(const Trig3<T>& t, HeadingZ) { return t.cz; }
+inline T heading_cos(const Trig3<T>& t, HeadingZ) {
+  return t.cz;
+}
 template <class T>
-inline T heading_sin(const Trig3<T>& t, HeadingZ) { return t.sz; }
+inline T heading_sin(const Trig3<T>& t, HeadingZ) {
+  return t.sz;
+}
 
 // The ABC flow is invariant under the cyclic relabelling (x, y, z; A, B, C)
 // -> (y, z, x; B, C, A): each component's formula in arnold_rhs becomes the
@@ -325,8 +333,8 @@ inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const StepScale
 }
 
 template <class T, class H>
-inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, const H& hs, T h,
-                           T h_pos, decltype(T() < T()) small) {
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const Trig3<T>& t1, const ArnoldCoeffs<T>& k, const H& hs, T h, T h_pos,
+                           decltype(T() < T()) small) {
   return rk4_step<T, H>(u, t1, step_scale(k, h, h_pos), hs, small);
 }
 
@@ -349,8 +357,8 @@ inline void rk4_step2(Rk4Work<T, H>& a, Rk4Work<T, H>& b, const Trig3<T>& ta, co
 
 // A step from u alone (no carried trig), as at a run's start.
 template <class T>
-inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const HeadingSelect<T>& hs, T h,
-                           T h_pos, decltype(T() < T()) small) {
+inline Rk4Step<T> rk4_step(const Vec3<T>& u, const ArnoldCoeffs<T>& k, const HeadingSelect<T>& hs, T h, T h_pos,
+                           decltype(T() < T()) small) {
   return rk4_step<T, HeadingSelect<T>>(u, trig3(u), k, hs, h, h_pos, small);
 }
 
@@ -359,8 +367,8 @@ inline Rk4Step<double> rk4_step(const Vec3<double>& u, const Trig3<double>& t, c
                                 const HeadingSelect<double>& hs, double h, double h_pos) {
   return rk4_step<double, HeadingSelect<double>>(u, t, k, hs, h, h_pos, small_shift_mode(h, k.A, k.B, k.C));
 }
-inline Rk4Step<double> rk4_step(const Vec3<double>& u, const ArnoldCoeffs<double>& k,
-                                const HeadingSelect<double>& hs, double h, double h_pos) {
+inline Rk4Step<double> rk4_step(const Vec3<double>& u, const ArnoldCoeffs<double>& k, const HeadingSelect<double>& hs,
+                                double h, double h_pos) {
   return rk4_step(u, trig3(u), k, hs, h, h_pos);
 }
 

@@ -20,9 +20,12 @@ inline double chebyshev_step(double x, int k) { return std::cos(k * std::acos(st
 inline double cheb_transform(double x, ChebTransform t) {
   const double c = std::clamp(x, -1.0, 1.0);
   switch (t) {
-    case ChebTransform::arcsine: return 2.0 / std::numbers::pi * std::asin(c);
-    case ChebTransform::arccosine: return 2.0 / std::numbers::pi * std::acos(c);
-    case ChebTransform::none: break;
+    case ChebTransform::arcsine:
+      return 2.0 / std::numbers::pi * std::asin(c);
+    case ChebTransform::arccosine:
+      return 2.0 / std::numbers::pi * std::acos(c);
+    case ChebTransform::none:
+      break;
   }
   return c;
 }

@@ -18,9 +18,7 @@ struct LogisticMap {
   }
 
   // Heading for the current state; rightwards = the "-pi/2" branch of Eq. 4.
-  double heading(bool rightwards) const {
-    return std::numbers::pi * x + (rightwards ? -0.5 : 0.5) * std::numbers::pi;
-  }
+  double heading(bool rightwards) const { return std::numbers::pi * x + (rightwards ? -0.5 : 0.5) * std::numbers::pi; }
 };
 
 }  // namespace chaosweep

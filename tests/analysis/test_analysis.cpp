@@ -15,10 +15,10 @@
 
 #include "analysis/figures.hpp"
 #include "analysis/grouping.hpp"
-#include "engine/store/h5_store.hpp"
 #include "analysis/replay.hpp"
 #include "analysis/result_set.hpp"
 #include "analysis/tables.hpp"
+#include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
 
 namespace chaosweep {
@@ -255,12 +255,13 @@ TEST(Tables, WhereThatMatchesNothingSaysSoNamingTheConditionAndTheValues) {
   EXPECT_EQ(message({"label=12", "c=0.5"}),
             "--where label=12 --where c=0.5: no run matches them all (each alone matches some of the 16 runs)");
   const std::string h5 = dir.file("t1.h5");
-  for (const std::string& cmd : {"table best " + h5 + " --where c=0.33", "figure fig6a " + h5 + " --where c=0.33 -o " +
-                                                                            dir.file("f.png")}) {
+  for (const std::string& cmd :
+       {"table best " + h5 + " --where c=0.33", "figure fig6a " + h5 + " --where c=0.33 -o " + dir.file("f.png")}) {
     const auto r = test::run_chaosweep(cmd);
     EXPECT_EQ(r.exit_code, 2) << cmd;
     EXPECT_NE(r.err.find(": --where c=0.33 matches none of the 16 runs: c takes 0.1, 0.25, 0.5\n"), std::string::npos)
-        << cmd << "\n" << r.err;
+        << cmd << "\n"
+        << r.err;
     EXPECT_EQ(r.err.find("hold no runs"), std::string::npos) << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("f.png")));
@@ -328,7 +329,8 @@ fixed = { c3_mode = "mirror", start = [10, 10], ds_index = 3, c3_n = 779 }
   r = test::run_chaosweep("table seed003 " + dir.file("r.h5") + " --format csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Heading z from (8, 8) at n = 800: ours 30.75% (any start: docs/seed003.md), paper 49%.
-  EXPECT_NE(r.out.find("Table 1,\"(8, 8)\",\"coverage % at n = 800, heading z\",30.75,49\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 1,\"(8, 8)\",\"coverage % at n = 800, heading z\",30.75,49\n"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("Table 2,heading z,mean coverage %,30.75,47.6\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Table 3,n = 800,\"coverage % from (10, 10), heading z\",30.75,54.5\n"), std::string::npos);
   EXPECT_NE(r.out.find("Section 6,ic grid step 1,sections,8,6"), std::string::npos) << r.out;
@@ -360,16 +362,19 @@ fixed = { ds_index = 3, c3_n = 19200 }
   // A 1e-6 perturbation does not grow within 800 steps: the literal model's
   // 30.75% every time, sd 0 (the paper's Table 2: 47.6, sd 8.0).
   EXPECT_NE(r.out.find("Table 2 (spread),\"heading z, ic +-1e-06, 8 samples\",mean coverage %,30.75,47.6\n"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("Table 2 (spread),\"heading z, ic +-1e-06, 8 samples\",standard deviation (n - 1),0,8.0062\n"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   // A perturbation of 1 gives each sample its own trajectory, hence a spread.
   const std::string sd1 = "Table 2 (spread),\"heading z, ic +-1, 8 samples\",standard deviation (n - 1),";
   const auto at = r.out.find(sd1);
   ASSERT_NE(at, std::string::npos) << r.out;
   EXPECT_GT(std::stod(r.out.substr(at + sd1.size())), 1.0);
   EXPECT_NE(r.out.find("Table 3 (spread),\"n = 19200, ic +-1, 8 samples\",share of samples at <= 12% (collapsed),"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
 }
 
 TEST(Tables, Seed002GivesAMixtureOnTheSimplexAndThePlansByAngles) {
@@ -404,9 +409,11 @@ TEST(Tables, Seed002GivesAMixtureOnTheSimplexAndThePlansByAngles) {
   EXPECT_NE(r.out.find(",0.221"), std::string::npos);  // the paper's, beside ours
   // Plans by angles used: ours and the paper's navigation setting.
   EXPECT_NE(r.out.find("plans using 1 bouncing angle (%),\"{30, 75, 315} deg, 24 bins, w2 2, 64 sources\","),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("plans using 3 bouncing angles (%),\"{45, 90, 135} deg, 8 bins, w2 100, 1464 sources\","),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
 }
 
 TEST(Grouping, QuantileInterpolatesLikeNumpy) {
@@ -491,7 +498,9 @@ TEST(Tables, ReadingsGiveEachRowsRangeAndTheObstacleToOpenRatioBesideThePapers) 
   const TextTable t = make_table("readings", ResultSet::load({dir.file("r.h5")}), opt);
   ASSERT_EQ(t.header[0], "reading");
   ASSERT_EQ(t.rows.size(), 3u);
-  auto col = [&](const std::string& name) { return std::size_t(std::find(t.header.begin(), t.header.end(), name) - t.header.begin()); };
+  auto col = [&](const std::string& name) {
+    return std::size_t(std::find(t.header.begin(), t.header.end(), name) - t.header.begin());
+  };
   // In run order: the defaults (rows 9 and 10), then mirror.
   const auto& mirror = t.rows[2];
   EXPECT_EQ(mirror[0], "obstacle_response=mirror");  // what differs from the defaults
@@ -500,8 +509,8 @@ TEST(Tables, ReadingsGiveEachRowsRangeAndTheObstacleToOpenRatioBesideThePapers) 
   EXPECT_EQ(mirror[col("ok")], "2/3");
   EXPECT_EQ(mirror[col("median CT")], "38000");  // the timeout counts as infinite
   EXPECT_EQ(mirror[col("paper in [min, max]")], "yes");
-  EXPECT_EQ(mirror[col("open row")], "9");  // the push reading's: an open map has no obstacle to respond to
-  EXPECT_EQ(mirror[col("CT / open")], "0.69");    // 38000 / 55000
+  EXPECT_EQ(mirror[col("open row")], "9");            // the push reading's: an open map has no obstacle to respond to
+  EXPECT_EQ(mirror[col("CT / open")], "0.69");        // 38000 / 55000
   EXPECT_EQ(mirror[col("paper CT / open")], "0.65");  // 35100 / 53600
   EXPECT_EQ(mirror[col("ratio / paper's")], "1.06");
   // Resampling {30000, 38000, inf} and {50000, 60000}: the ratio's median
@@ -537,10 +546,12 @@ TEST(Tables, ParametersPrintInShortestRoundTripFormAndCsvCarriesFullPrecision) {
   TableOptions opt;
   opt.params = {"A", "B", "C"};
   const std::string md = table_text("best", rs, opt, TableFormat::md);
-  EXPECT_NE(md.find("| 1 | 0.5 | 0.2 | 0.30000000000000004 | 1185.1 | 1185.1 | 1/1 | 0.527 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 1 | 0.5 | 0.2 | 0.30000000000000004 | 1185.1 | 1185.1 | 1/1 | 0.527 |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("| 2 | 0.5 | 0.2 | 0.3 | 3828.6 | 3828.6 | 1/1 | 1.7 |"), std::string::npos) << md;
   const std::string csv = table_text("best", rs, opt, TableFormat::csv);
-  EXPECT_NE(csv.find("\n1,0.5,0.2,0.30000000000000004,1185.1,1185.1,1/1,0.526711111111111\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n1,0.5,0.2,0.30000000000000004,1185.1,1185.1,1/1,0.526711111111111\n"), std::string::npos)
+      << csv;
   EXPECT_NE(csv.find("\n2,0.5,0.2,0.3,3828.6123456789,3828.6123456789,1/1,"), std::string::npos) << csv;
   FigureOptions fo;
   fo.size = {320, 240};
@@ -566,14 +577,15 @@ std::vector<std::string> help_names(const std::string& help) {
 // The one-line lists of names in --help are the code's own lists, and the
 // longer descriptions below them cover every name.
 TEST(Help, TableAndFigureNameListsHoldEveryNameTheCommandsAccept) {
-  for (const auto& [command, names] : {std::pair{std::string("table"), table_names()},
-                                       std::pair{std::string("figure"), figure_names()}}) {
+  for (const auto& [command, names] :
+       {std::pair{std::string("table"), table_names()}, std::pair{std::string("figure"), figure_names()}}) {
     const auto r = test::run_chaosweep(command + " --help");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(help_names(r.out), names) << r.out;
     const std::string footer = r.out.substr(r.out.find(command == "table" ? "\nTables:" : "\nFigures"));
     for (const std::string& n : names) {
-      EXPECT_TRUE(std::regex_search(footer, std::regex("\n  (\\w+, )*" + n + "[ ,]"))) << n << " is not described:\n" << footer;
+      EXPECT_TRUE(std::regex_search(footer, std::regex("\n  (\\w+, )*" + n + "[ ,]"))) << n << " is not described:\n"
+                                                                                       << footer;
       // Accepted: naming it is never "unknown" (tables and figures alike need results or not).
       EXPECT_NO_THROW((void)(command == "table" ? table_needs_results(n) : figure_needs_results(n))) << n;
     }
@@ -581,7 +593,8 @@ TEST(Help, TableAndFigureNameListsHoldEveryNameTheCommandsAccept) {
   // The statistics --stat takes, too.
   const auto r = test::run_chaosweep("figure --help");
   EXPECT_NE(r.out.find("statistic, min, q1, median, mean, q3, max, ok_rate or runs"), std::string::npos) << r.out;
-  EXPECT_EQ(statistic_names(), (std::vector<std::string>{"min", "q1", "median", "mean", "q3", "max", "ok_rate", "runs"}));
+  EXPECT_EQ(statistic_names(),
+            (std::vector<std::string>{"min", "q1", "median", "mean", "q3", "max", "ok_rate", "runs"}));
   EXPECT_THROW(table_needs_results("nosuch"), AnalysisError);
   EXPECT_THROW(figure_needs_results("nosuch"), AnalysisError);
 }
@@ -634,7 +647,8 @@ TEST_F(Fig6Results, HeatmapOfOkRateOverTwoAxes) {
   opt_.y = "B";
   opt_.stat = "ok_rate";
   const FigureOutput out = draw("heatmap", "ok.svg");
-  EXPECT_EQ(test::read_file(out.csv), "A,B,ok_rate,runs,ok\n0.4,0.2,1,2,2\n0.4,0.3,0.5,2,1\n0.5,0.2,1,2,2\n0.5,0.3,1,2,2\n");
+  EXPECT_EQ(test::read_file(out.csv),
+            "A,B,ok_rate,runs,ok\n0.4,0.2,1,2,2\n0.4,0.3,0.5,2,1\n0.5,0.2,1,2,2\n0.5,0.3,1,2,2\n");
   EXPECT_NE(test::read_file(out.image).find("<svg"), std::string::npos);
 }
 

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <algorithm>
 #include <regex>
 
 #include <sys/wait.h>
@@ -14,8 +14,8 @@
 
 #include <csignal>
 
-#include "engine/store/h5_store.hpp"
 #include "engine/rows/result_columns.hpp"
+#include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -141,8 +141,8 @@ TEST(CliSweep, EveryTable1RowRunsToOkWithThePapersParameters) {
 
 TEST(CliRun, TraceWritesTheTrajectoryAsCsv) {
   TempDir tmp;
-  const auto r = run_chaosweep("run --size 20 --sr 1 --env five_squares --map-zoning 1 --c 1 --trace " +
-                               tmp.file("trace.csv"));
+  const auto r =
+      run_chaosweep("run --size 20 --sr 1 --env five_squares --map-zoning 1 --c 1 --trace " + tmp.file("trace.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string csv = chaosweep::test::read_file(tmp.file("trace.csv"));
   EXPECT_EQ(csv.rfind("t,x,y,kind,ds_index\n0,6,2,start,3\n", 0), 0u) << csv.substr(0, 80);
@@ -367,7 +367,8 @@ TEST(CliSweep, FullFilesystemStopsWithAResumableFile) {
   const auto probe = run_chaosweep("sweep " + args);  // 200 kB: not even room for one batch
   ASSERT_EQ(probe.exit_code, 3) << probe.err;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(probe.err, m, std::regex(R"(no room in \S+ for the next batch of \S+ \(needs up to (\d+) KiB)")))
+  ASSERT_TRUE(std::regex_search(probe.err, m,
+                                std::regex(R"(no room in \S+ for the next batch of \S+ \(needs up to (\d+) KiB)")))
       << probe.err;
   // Room for the first batch and a few more (tmpfs counts whole pages).
   const long size = long(std::filesystem::file_size(disk + "/r.h5.partial")) + std::stol(m[1]) * 1024 + 64 * 1024;
@@ -499,7 +500,8 @@ TEST(CliMerge, NamesTheMissingShardAndWritesNothing) {
 }
 
 TEST(CliSweep, BadShardIsNamed) {
-  const auto r = run_chaosweep("sweep " + std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml -o /tmp/x.h5 --shard 3/3");
+  const auto r =
+      run_chaosweep("sweep " + std::string(CHAOSWEEP_SOURCE_DIR) + "/experiments/demo.toml -o /tmp/x.h5 --shard 3/3");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--shard"), std::string::npos) << r.err;
 }
@@ -596,8 +598,8 @@ TEST(CliSweep, TenMillionRunSweepStartsAtOnceInBoundedMemory) {
   TempDir tmp;
   write_file(tmp.file("big.toml"), cheap_sweep(100, 100000));  // 10^7 runs
   const std::string partial = tmp.file("big.h5.partial");
-  const int pid = chaosweep::test::start_chaosweep("sweep " + tmp.file("big.toml") + " -q --batch 1000 -o " +
-                                                   tmp.file("big.h5"));
+  const int pid =
+      chaosweep::test::start_chaosweep("sweep " + tmp.file("big.toml") + " -q --batch 1000 -o " + tmp.file("big.h5"));
   ASSERT_TRUE(wait_for_rows(partial, 3000, pid));
   kill(pid, SIGINT);
   long rss = 0;
@@ -622,8 +624,9 @@ TEST(CliBench, JsonReportsEachWidthTheNaiveRatioAndTheWholeSweep) {
     return m.empty() ? std::nan("") : std::stod(m[1]);
   };
   for (const char* target : {"scalar", "avx2", "avx512"}) {
-    const std::regex width("\\{\"target\": \"" + std::string(target) +
-                           "\", \"width\": [148], \"ns_per_lane_step\": ([0-9.]+), \"ns_per_lane_step_median\": ([0-9.]+)\\}");
+    const std::regex width(
+        "\\{\"target\": \"" + std::string(target) +
+        "\", \"width\": [148], \"ns_per_lane_step\": ([0-9.]+), \"ns_per_lane_step_median\": ([0-9.]+)\\}");
     std::smatch m;
     const bool present = std::regex_search(r.out, m, width);
     if (std::string(target) == "scalar") {

@@ -71,13 +71,14 @@ TEST(CliRun, NanInfAndOutOfRangeFlagValuesNameTheFlagAndTheRangeAndExit2) {
     const char* args;
     const char* message;
   };
-  for (const Case& c : {Case{"--sr nan", "--sr: sr = nan is out of range: must be a number in [0.001, 10000]"},
-                        Case{"--A inf", "--A: A = inf is out of range: must be a number in [-1000, 1000]"},
-                        Case{"--B -inf", "--B: B = -inf is out of range: must be a number in [-1000, 1000]"},
-                        Case{"--dc 1.5", "--dc: dc = 1.5 is out of range: must be a number in [1e-06, 1]"},
-                        Case{"--ds-index 2.5", "--ds-index: ds_index = 2.5 is out of range: must be an integer in [1, 3]"},
-                        Case{"--niter -1", "--niter: niter = -1 is out of range: must be an integer in [1, "},
-                        Case{"--size 0", "--size: size_x = 0 is out of range: must be a number in [0.001, 1e+06]"}}) {
+  for (const Case& c :
+       {Case{"--sr nan", "--sr: sr = nan is out of range: must be a number in [0.001, 10000]"},
+        Case{"--A inf", "--A: A = inf is out of range: must be a number in [-1000, 1000]"},
+        Case{"--B -inf", "--B: B = -inf is out of range: must be a number in [-1000, 1000]"},
+        Case{"--dc 1.5", "--dc: dc = 1.5 is out of range: must be a number in [1e-06, 1]"},
+        Case{"--ds-index 2.5", "--ds-index: ds_index = 2.5 is out of range: must be an integer in [1, 3]"},
+        Case{"--niter -1", "--niter: niter = -1 is out of range: must be an integer in [1, "},
+        Case{"--size 0", "--size: size_x = 0 is out of range: must be a number in [0.001, 1e+06]"}}) {
     const auto r = run_chaosweep(std::string("run ") + c.args + " --json");
     EXPECT_EQ(r.exit_code, 2) << c.args;
     EXPECT_TRUE(has(r.err, c.message)) << c.args << ": " << r.err;
@@ -93,13 +94,11 @@ TEST(CliSweep, OutOfRangeAndWrongTypeFlagsAreNamedAndNothingIsWritten) {
     const char* flags;
     const char* message;
   };
-  for (const Case& c : {Case{"--threads -1", "--threads: Value -1 not in range"},
-                        Case{"--threads abc", "--threads"},
+  for (const Case& c : {Case{"--threads -1", "--threads: Value -1 not in range"}, Case{"--threads abc", "--threads"},
                         Case{"--batch 0", "--batch: Value 0 not in range"},
                         Case{"--progress sometimes", "--progress: sometimes not in {auto,always,never}"},
                         Case{"--shard 2/1", "--shard: index 2 of 1 is out of range: need 0 <= K < N"},
-                        Case{"--shard a/b", "--shard: 'a/b' is not K/N"},
-                        Case{"--bogus", "--bogus"}}) {
+                        Case{"--shard a/b", "--shard: 'a/b' is not K/N"}, Case{"--bogus", "--bogus"}}) {
     const auto r = run_chaosweep(base + c.flags);
     EXPECT_EQ(r.exit_code, 2) << c.flags;
     EXPECT_TRUE(has(r.err, c.message)) << c.flags << ": " << r.err;
@@ -122,14 +121,16 @@ TEST(CliSweep, EachKindOfBadSpecIsNamedExits2AndWritesNothing) {
     const char* spec;
     const char* message;
   };
-  for (const Case& c : {Case{"[fixed]\nsr = 1\nA = = 2\n", "bad.toml: Error while parsing value"},
-                        Case{"[fixed]\nfoo = 1\n", "bad.toml: fixed.foo: unknown key 'foo' (known: "},
-                        Case{"[fixed]\nA = \"big\"\n", "bad.toml: fixed.A: A must be a number"},
-                        Case{"[fixed]\nA = nan\n", "bad.toml: fixed.A: A = nan is out of range: must be a number in [-1000, 1000]"},
-                        Case{"[axes]\nsr = [1, inf]\n", "bad.toml: axes.sr[1]: sr = inf is out of range"},
-                        Case{"[axes]\nA = []\n", "bad.toml: axes.A: is empty"},
-                        Case{"[axes]\nfoo = [1]\n", "bad.toml: axes.foo[0]: unknown key 'foo'"},
-                        Case{"[sweep]\nextends = \"no_such_parent.toml\"\n", "no_such_parent.toml: cannot open the spec named by sweep.extends"}}) {
+  for (const Case& c :
+       {Case{"[fixed]\nsr = 1\nA = = 2\n", "bad.toml: Error while parsing value"},
+        Case{"[fixed]\nfoo = 1\n", "bad.toml: fixed.foo: unknown key 'foo' (known: "},
+        Case{"[fixed]\nA = \"big\"\n", "bad.toml: fixed.A: A must be a number"},
+        Case{"[fixed]\nA = nan\n", "bad.toml: fixed.A: A = nan is out of range: must be a number in [-1000, 1000]"},
+        Case{"[axes]\nsr = [1, inf]\n", "bad.toml: axes.sr[1]: sr = inf is out of range"},
+        Case{"[axes]\nA = []\n", "bad.toml: axes.A: is empty"},
+        Case{"[axes]\nfoo = [1]\n", "bad.toml: axes.foo[0]: unknown key 'foo'"},
+        Case{"[sweep]\nextends = \"no_such_parent.toml\"\n",
+             "no_such_parent.toml: cannot open the spec named by sweep.extends"}}) {
     write_file(tmp.file("bad.toml"), c.spec);
     const auto r = run_chaosweep("sweep " + tmp.file("bad.toml") + " -q -o " + tmp.file("out.h5"));
     EXPECT_EQ(r.exit_code, 2) << c.spec;
@@ -177,10 +178,13 @@ TEST(CliSweep, ABadEnvironmentFileIsNamedExits2AndWritesNothing) {
            Case{"obstacles = [\n", "env.toml: Error while parsing array"},
            Case{"colour = 1\n", "env.toml: unknown key 'colour' (allowed: name, description"},
            Case{"size = \"big\"\n", "env.toml: 'size' must be a number or [x, y]"},
-           Case{"obstacles = [{ x = nan, y = 0.1, w = 0.1, h = 0.1 }]\n", "'obstacles[0].x' = nan must be a finite number"},
+           Case{"obstacles = [{ x = nan, y = 0.1, w = 0.1, h = 0.1 }]\n",
+                "'obstacles[0].x' = nan must be a finite number"},
            Case{"obstacles = [{ x = 0.1, y = 0.1, w = 0.1, h = 0.1 }, { x = 0.8, y = 0.1, w = 0.4, h = 0.1 }]\n",
-                "env.toml: obstacles[1] spans [9.6, 14.4] x [1.2, 2.4] m: it reaches outside the map [0, 12] x [0, 12] m"},
-           Case{"obstacles = [{ x = 2, y = 2, w = 0.5, h = 0.5 }]\n", "obstacles[0] spans [24, 30] x [24, 30] m: it lies outside the map"},
+                "env.toml: obstacles[1] spans [9.6, 14.4] x [1.2, 2.4] m: it reaches outside the map [0, 12] x [0, 12] "
+                "m"},
+           Case{"obstacles = [{ x = 2, y = 2, w = 0.5, h = 0.5 }]\n",
+                "obstacles[0] spans [24, 30] x [24, 30] m: it lies outside the map"},
            Case{"start = [0.5, 0.5]\nobstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n",
                 "env.toml: 'start' = (6, 6) m lies inside obstacles[0]"},
            Case{"start = [1.5, 0.5]\n", "env.toml: 'start' = (18, 6) m is outside the map [0, 12] x [0, 12] m"},
@@ -281,7 +285,8 @@ bool BadResultFiles::ok_ = false;
 TEST_F(BadResultFiles, MergeNamesABrokenOrForeignShardAndWritesNothing) {
   for (const Bad& b : bad_files()) {
     for (const bool first : {true, false}) {
-      const std::string inputs = first ? file(b.name) + " " + file("shard1.h5") : file("shard0.h5") + " " + file(b.name);
+      const std::string inputs =
+          first ? file(b.name) + " " + file("shard1.h5") : file("shard0.h5") + " " + file(b.name);
       const auto r = run_chaosweep("merge -o " + file("merged.h5") + " " + inputs);
       Bad want = b;
       if (b.name == "no-runs.h5" || b.name == "not-compound.h5" || b.name == "other-columns.h5")
@@ -293,10 +298,11 @@ TEST_F(BadResultFiles, MergeNamesABrokenOrForeignShardAndWritesNothing) {
 }
 
 TEST_F(BadResultFiles, MergeRefusesShardsOfDifferentSpecsAndWritesNothing) {
-  const auto r = run_chaosweep("merge -o " + file("merged.h5") + " " + file("shard0.h5") + " " + file("other_shard1.h5"));
+  const auto r =
+      run_chaosweep("merge -o " + file("merged.h5") + " " + file("shard0.h5") + " " + file("other_shard1.h5"));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_TRUE(has(r.err, file("other_shard1.h5") + " comes from another spec than " + file("shard0.h5") +
-                             " (spec_hash differs)"))
+  EXPECT_TRUE(has(
+      r.err, file("other_shard1.h5") + " comes from another spec than " + file("shard0.h5") + " (spec_hash differs)"))
       << r.err;
   expect_nothing_written(file("merged.h5"));
   // A whole-sweep file and a shard of the same spec: different shard counts.
@@ -316,7 +322,8 @@ TEST_F(BadResultFiles, MergeRefusesTheSameShardTwiceNamingBothFiles) {
   const auto copy = run_chaosweep("merge -o " + file("merged.h5") + " " + file("shard0.h5") + " " + file("shard1.h5") +
                                   " " + file("copy_of_shard0.h5"));
   EXPECT_EQ(copy.exit_code, 2);
-  EXPECT_TRUE(has(copy.err, file("copy_of_shard0.h5") + " and " + file("shard0.h5") + " are both shard 0/2")) << copy.err;
+  EXPECT_TRUE(has(copy.err, file("copy_of_shard0.h5") + " and " + file("shard0.h5") + " are both shard 0/2"))
+      << copy.err;
   expect_nothing_written(file("merged.h5"));
   // The good pair merges (the files above were not at fault).
   const auto ok = run_chaosweep("merge -o " + file("merged.h5") + " " + file("shard0.h5") + " " + file("shard1.h5"));
@@ -330,7 +337,8 @@ TEST_F(BadResultFiles, CompareNamesABrokenOrForeignFileAndExits2) {
       const std::string args = first ? file(b.name) + " " + file("good.h5") : file("good.h5") + " " + file(b.name);
       const auto r = run_chaosweep("compare " + args);
       Bad want = b;
-      if (b.name == "other-columns.h5") want.why = "other-columns.h5 has no 'run_id' column: not a chaosweep result file";
+      if (b.name == "other-columns.h5")
+        want.why = "other-columns.h5 has no 'run_id' column: not a chaosweep result file";
       expect_refused(r, want, "compare");
       EXPECT_EQ(r.out, "") << b.name;
     }
@@ -339,10 +347,10 @@ TEST_F(BadResultFiles, CompareNamesABrokenOrForeignFileAndExits2) {
 
 TEST_F(BadResultFiles, TableNamesABrokenOrForeignFileAndWritesNothing) {
   for (const Bad& b : bad_files()) {
-    const auto r =
-        run_chaosweep("table summary " + file("good.h5") + " " + file(b.name) + " -o " + file("table.md"));
+    const auto r = run_chaosweep("table summary " + file("good.h5") + " " + file(b.name) + " -o " + file("table.md"));
     Bad want = b;
-    if (b.name == "other-columns.h5") want.why = "other-columns.h5: /runs has no 'run_id' column (not a chaosweep result file)";
+    if (b.name == "other-columns.h5")
+      want.why = "other-columns.h5: /runs has no 'run_id' column (not a chaosweep result file)";
     expect_refused(r, want, "table");
     EXPECT_FALSE(fs::exists(file("table.md"))) << b.name;
     const auto stdout_table = run_chaosweep("table best " + file(b.name));
@@ -355,7 +363,8 @@ TEST_F(BadResultFiles, FigureNamesABrokenOrForeignFileAndWritesNothing) {
   for (const Bad& b : bad_files()) {
     const auto r = run_chaosweep("figure fig6a " + file(b.name) + " -o " + file("fig.png"));
     Bad want = b;
-    if (b.name == "other-columns.h5") want.why = "other-columns.h5: /runs has no 'run_id' column (not a chaosweep result file)";
+    if (b.name == "other-columns.h5")
+      want.why = "other-columns.h5: /runs has no 'run_id' column (not a chaosweep result file)";
     expect_refused(r, want, "figure");
     EXPECT_FALSE(fs::exists(file("fig.png"))) << b.name;
     EXPECT_FALSE(fs::exists(file("fig.png.csv")) || fs::exists(file("fig.csv"))) << b.name;
@@ -363,11 +372,14 @@ TEST_F(BadResultFiles, FigureNamesABrokenOrForeignFileAndWritesNothing) {
 }
 
 TEST_F(BadResultFiles, MergeRefusesAMergedFileAsAShardAndWritesNothing) {
-  const auto first = run_chaosweep("merge -o " + file("merged_once.h5") + " " + file("shard0.h5") + " " + file("shard1.h5"));
+  const auto first =
+      run_chaosweep("merge -o " + file("merged_once.h5") + " " + file("shard0.h5") + " " + file("shard1.h5"));
   ASSERT_EQ(first.exit_code, 0) << first.err;
-  const auto again = run_chaosweep("merge -o " + file("merged.h5") + " " + file("merged_once.h5") + " " + file("shard1.h5"));
+  const auto again =
+      run_chaosweep("merge -o " + file("merged.h5") + " " + file("merged_once.h5") + " " + file("shard1.h5"));
   EXPECT_EQ(again.exit_code, 2);
-  EXPECT_TRUE(has(again.err, file("merged_once.h5") + ": attribute 'shard' is 'merged from 2 files of 2 shards', not K/N"))
+  EXPECT_TRUE(
+      has(again.err, file("merged_once.h5") + ": attribute 'shard' is 'merged from 2 files of 2 shards', not K/N"))
       << again.err;
   expect_nothing_written(file("merged.h5"));
   fs::remove(file("merged_once.h5"));

@@ -59,12 +59,12 @@ TEST(CliSweep, AnOutputPathThatCannotBeAFileIsRefusedBeforeTheFirstRun) {
   struct Case {
     std::string args, message;
   };
-  for (const Case& c : {Case{"-o ''", "-o: the output path is empty: give a file name"},
-                        Case{"-o outdir", "-o: outdir is a directory: give a file name (e.g. outdir/results.h5)"},
-                        Case{"-o outdir --force", "-o: outdir is a directory"},
-                        Case{"-o outdir --resume", "-o: outdir is a directory"},
-                        Case{"-o new/", "-o: new/ names a directory, not a file"},
-                        Case{"-o outdir/..", "-o: outdir/.. is a directory"}}) {
+  for (const Case& c :
+       {Case{"-o ''", "-o: the output path is empty: give a file name"},
+        Case{"-o outdir", "-o: outdir is a directory: give a file name (e.g. outdir/results.h5)"},
+        Case{"-o outdir --force", "-o: outdir is a directory"}, Case{"-o outdir --resume", "-o: outdir is a directory"},
+        Case{"-o new/", "-o: new/ names a directory, not a file"},
+        Case{"-o outdir/..", "-o: outdir/.. is a directory"}}) {
     const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " " + c.args, in_work);
     EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
     EXPECT_TRUE(has(r.err, "chaosweep sweep: " + c.message)) << c.args << ": " << r.err;
@@ -100,9 +100,10 @@ TEST(CliSweep, BadSlurmArrayVariablesAreNamedAndNothingRuns) {
         Case{"SLURM_ARRAY_TASK_ID=99999999999 SLURM_ARRAY_TASK_COUNT=2", "SLURM_ARRAY_TASK_ID = '99999999999'"},
         Case{"SLURM_ARRAY_TASK_ID=1", "SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not"},
         Case{"SLURM_ARRAY_TASK_COUNT=2", "SLURM_ARRAY_TASK_COUNT is set but SLURM_ARRAY_TASK_ID is not"},
-        Case{"SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=2",
-             "SLURM_ARRAY_TASK_ID = 2, SLURM_ARRAY_TASK_MIN = 0, SLURM_ARRAY_TASK_STEP = 1, SLURM_ARRAY_TASK_COUNT = 2: "
-             "not a task of the array"},
+        Case{
+            "SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=2",
+            "SLURM_ARRAY_TASK_ID = 2, SLURM_ARRAY_TASK_MIN = 0, SLURM_ARRAY_TASK_STEP = 1, SLURM_ARRAY_TASK_COUNT = 2: "
+            "not a task of the array"},
         Case{"SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_STEP=2", "not a task of the array"}}) {
     const auto r = run_chaosweep(sweep, "env " + c.env);
     EXPECT_EQ(r.exit_code, 2) << c.env << ": " << r.err;
@@ -136,8 +137,7 @@ TEST(CliSweep, InputsThatAreNotRegularFilesAreRefusedAndNothingIsWritten) {
         Case{tiny_sweep_on("/dev/zero"),
              "fixed: environment /dev/zero: the environment file is a character device, not a regular file"},
         Case{tiny_sweep_on(tmp.file("fifo")), "the environment file is a FIFO"},
-        Case{tiny_sweep_on(tmp.file("dir") + "/"),
-             "the environment file is a directory, not a regular file"},
+        Case{tiny_sweep_on(tmp.file("dir") + "/"), "the environment file is a directory, not a regular file"},
         Case{"# nothing\n", "the spec is empty (it sets nothing)"}}) {
     std::string spec = tmp.file("fifo");
     if (!c.spec.empty()) {
@@ -194,5 +194,6 @@ TEST(CliMerge, ShardsMadeWithDifferentEnvironmentFilesAreRefusedNamingTheFile) {
   delete_attribute(tmp.file("s1.h5"), "inputs_hash");
   const auto old = run_chaosweep("merge -o " + tmp.file("m2.h5") + " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5"));
   EXPECT_EQ(old.exit_code, 2) << old.err;
-  EXPECT_TRUE(has(old.err, tmp.file("s1.h5") + " does not record its input files (written by an older chaosweep)")) << old.err;
+  EXPECT_TRUE(has(old.err, tmp.file("s1.h5") + " does not record its input files (written by an older chaosweep)"))
+      << old.err;
 }

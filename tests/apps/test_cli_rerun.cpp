@@ -8,10 +8,10 @@
 #include <set>
 #include <sstream>
 
-#include "engine/store/h5_store.hpp"
-#include "engine/store/stored_run.hpp"
 #include "engine/run/serial_batch_evaluator.hpp"
 #include "engine/run/sweep_runner.hpp"
+#include "engine/store/h5_store.hpp"
+#include "engine/store/stored_run.hpp"
 #include "tests/support/sweep_rows.hpp"
 #include "tests/support/test_util.hpp"
 
@@ -49,7 +49,7 @@ label = "odd"
 C = { start = 0.2, stop = 0.4, step = 0.05 }
 ds_index = [1, 3]
 )",
-                                         "odd.toml");
+                                          "odd.toml");
   return sweep_rows(spec, ThreadBatchEvaluator(2));
 }
 
@@ -61,9 +61,9 @@ ds_index = [1, 3]
 // Logistic, Chebyshev, contraction and bouncing runs all come back bit for bit.
 TEST(CliRunFrom, EveryRowOfShardsOfTheShippedSpecsIsReproducedBitForBit) {
   TempDir dir;
-  const std::vector<std::pair<std::string, std::string>> shards{
-      {"demo", "0/28"},    {"table1", "4/6"},  {"seed001", "0/32"},
-      {"seed002", "1/40"}, {"seed003", "0/6"}, {"fig6_paper_spread", "1/2"}};
+  const std::vector<std::pair<std::string, std::string>> shards{{"demo", "0/28"},    {"table1", "4/6"},
+                                                                {"seed001", "0/32"}, {"seed002", "1/40"},
+                                                                {"seed003", "0/6"},  {"fig6_paper_spread", "1/2"}};
   std::set<std::string> planners, variants;
   std::size_t rows = 0;
   for (const auto& [name, shard] : shards) {
@@ -78,7 +78,8 @@ TEST(CliRunFrom, EveryRowOfShardsOfTheShippedSpecsIsReproducedBitForBit) {
       const RowComparison cmp = compare_row(stored.row, {stored.tuple, SerialBatchEvaluator().evaluate(stored.tuple)});
       EXPECT_GT(cmp.compared.size(), 80u);
       for (const ColumnDifference& d : cmp.differences)
-        ADD_FAILURE() << name << " run_id " << id << ": " << d.column << " stored " << d.stored << ", re-run " << d.rerun;
+        ADD_FAILURE() << name << " run_id " << id << ": " << d.column << " stored " << d.stored << ", re-run "
+                      << d.rerun;
       planners.insert(stored.row.text.at("planner"));
       variants.insert(stored.row.text.at("variant"));
       ++rows;
@@ -193,11 +194,13 @@ TEST(CliRunFrom, ATuplePrintedByTableBestTypedIntoRunReproducesTheStoredRow) {
     std::stringstream ss(line);
     for (std::string c; std::getline(ss, c, ',');) cell.push_back(c);
     ASSERT_EQ(cell.size(), 8u) << line;
-    for (int k = 1; k <= 3; ++k) EXPECT_LE(cell[std::size_t(k)].size(), 4u) << "a grid value with float noise: " << line;
+    for (int k = 1; k <= 3; ++k)
+      EXPECT_LE(cell[std::size_t(k)].size(), 4u) << "a grid value with float noise: " << line;
     // demo.toml's fixed settings, then the printed tuple.
-    const auto run = run_chaosweep("run --planner arnold --env empty --size 50 --sr 4 --ds-index 3 --start 0.5,0.5 "
-                                   "--dc 0.9 --max-time 10000 --A " + cell[1] + " --B " + cell[2] + " --C " + cell[3] +
-                                   " --json");
+    const auto run = run_chaosweep(
+        "run --planner arnold --env empty --size 50 --sr 4 --ds-index 3 --start 0.5,0.5 "
+        "--dc 0.9 --max-time 10000 --A " +
+        cell[1] + " --B " + cell[2] + " --C " + cell[3] + " --json");
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_TRUE(has(run.out, "\"coverage_time\": " + cell[4] + ",")) << line << "\n" << run.out;
     ++checked;
@@ -225,7 +228,7 @@ TEST(CliCompare, GridsOfDifferentStepsAlignOnTheirCommonDecimals) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   const auto r = run_chaosweep("compare " + dir.file("coarse.h5") + " " + dir.file("fine.h5"));
-  EXPECT_TRUE(has(r.out, "aligned on parameters (param_hash): 280 runs, 280 identical, 0 changed; 0 only in A, 960 only in B"))
+  EXPECT_TRUE(
+      has(r.out, "aligned on parameters (param_hash): 280 runs, 280 identical, 0 changed; 0 only in A, 960 only in B"))
       << r.out;
 }
-

@@ -82,9 +82,10 @@ TEST(CliSlurm, TheFormsSlurmAcceptsGoIntoTheScriptAsGiven) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), spec_18_runs);
   const std::vector<std::pair<std::string, std::string>> accepted{
-      {"--time", "30"},         {"--time", "30:15"},      {"--time", "02:00:00"}, {"--time", "1-12"},
-      {"--time", "1-12:30"},    {"--time", "1-12:30:00"}, {"--time", "UNLIMITED"}, {"--mem", "4096"},
-      {"--mem", "4G"},          {"--mem", "500m"},        {"--partition", "batch"}, {"--partition", "gpu-a100,cpu.long_1"},
+      {"--time", "30"},         {"--time", "30:15"},         {"--time", "02:00:00"},
+      {"--time", "1-12"},       {"--time", "1-12:30"},       {"--time", "1-12:30:00"},
+      {"--time", "UNLIMITED"},  {"--mem", "4096"},           {"--mem", "4G"},
+      {"--mem", "500m"},        {"--partition", "batch"},    {"--partition", "gpu-a100,cpu.long_1"},
       {"--account", "proj_42"}, {"--job-name", "fig6.run-2"}};
   for (const auto& [flag, value] : accepted) {
     const auto r = run_chaosweep("slurm " + tmp.file("s.toml") + " --tasks 2 --force -o " + tmp.file("run") + " " +
@@ -129,15 +130,15 @@ TEST(CliSlurm, TheScriptsRunWithQuotedPathsAndTheMergeListsNoShard) {
   fs::create_directories(odd);
   write_file(odd + "/s.toml", spec_18_runs);
   const int tasks = 18;  // one run each: the most the spec allows
-  const auto w = run_chaosweep("slurm " + shell_quote(odd + "/s.toml") + " --tasks " + std::to_string(tasks) +
-                               " -o " + tmp.file("run"));
+  const auto w = run_chaosweep("slurm " + shell_quote(odd + "/s.toml") + " --tasks " + std::to_string(tasks) + " -o " +
+                               tmp.file("run"));
   ASSERT_EQ(w.exit_code, 0) << w.err;
   const std::string merge = read_file(tmp.file("run/merge.sbatch"));
   EXPECT_EQ(merge.find("shard_"), std::string::npos) << merge;
   EXPECT_LT(merge.size(), 2000u);
   for (int k = 0; k < tasks; ++k)
-    ASSERT_EQ(run_script(tmp.file("run/sweep.sbatch"), "SLURM_ARRAY_TASK_ID=" + std::to_string(k) + " SLURM_CPUS_PER_TASK=1",
-                         tmp.path().string()),
+    ASSERT_EQ(run_script(tmp.file("run/sweep.sbatch"),
+                         "SLURM_ARRAY_TASK_ID=" + std::to_string(k) + " SLURM_CPUS_PER_TASK=1", tmp.path().string()),
               0)
         << read_file(tmp.file("script.log"));
   ASSERT_EQ(run_script(tmp.file("run/merge.sbatch"), "", tmp.path().string()), 0) << read_file(tmp.file("script.log"));

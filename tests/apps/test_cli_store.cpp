@@ -9,8 +9,8 @@
 
 #include <chrono>
 #include <csignal>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <thread>
@@ -102,7 +102,9 @@ void write_hand_made(const std::string& path, const std::vector<std::pair<std::s
   const hid_t type = H5Tcreate(H5T_COMPOUND, 16 * columns.size());
   for (std::size_t k = 0; k < columns.size(); ++k)
     H5Tinsert(type, columns[k].first.c_str(), 16 * k,
-              columns[k].second == 'i' ? H5T_NATIVE_INT64 : columns[k].second == 'f' ? H5T_NATIVE_DOUBLE : text);
+              columns[k].second == 'i'   ? H5T_NATIVE_INT64
+              : columns[k].second == 'f' ? H5T_NATIVE_DOUBLE
+                                         : text);
   std::vector<unsigned char> buf(16 * columns.size() * std::size_t(n), 0);
   for (int r = 0; r < n; ++r)
     for (std::size_t k = 0; k < columns.size(); ++k) {
@@ -131,8 +133,9 @@ void write_hand_made(const std::string& path, const std::vector<std::pair<std::s
 
 // Every column compare, table and figure need, of the given kinds.
 std::vector<std::pair<std::string, char>> reader_columns(char run_id_kind) {
-  return {{"run_id", run_id_kind}, {"param_hash", 'i'}, {"status", 's'}, {"coverage_time", 'f'}, {"variant", 's'},
-          {"env", 's'},           {"size_x", 'f'},     {"size_y", 'f'}, {"sr", 'f'}};
+  return {{"run_id", run_id_kind}, {"param_hash", 'i'}, {"status", 's'},
+          {"coverage_time", 'f'},  {"variant", 's'},    {"env", 's'},
+          {"size_x", 'f'},         {"size_y", 'f'},     {"sr", 'f'}};
 }
 
 // Cheap runs (a 6 m map, SR 2 m), a_values x b_values of them.
@@ -153,9 +156,10 @@ TEST(CliSweep, KilledAfterFiveSecondsItKeepsItsFinishedRowsAndResumes) {
 #else
   const char* budget = "150000";  // about 9 s of runs on one core here
 #endif
-  write_file(tmp.file("s.toml"), std::string("[fixed]\nsize = 70\nsr = 1\nmax_time = ") + budget +
-                                     "\n[axes]\nA = { start = 0.3, stop = 0.7, num = 8 }\n"
-                                     "B = { start = 0.1, stop = 0.8, num = 12 }\nC = { start = 0.2, stop = 0.4, num = 10 }\n");
+  write_file(tmp.file("s.toml"),
+             std::string("[fixed]\nsize = 70\nsr = 1\nmax_time = ") + budget +
+                 "\n[axes]\nA = { start = 0.3, stop = 0.7, num = 8 }\n"
+                 "B = { start = 0.1, stop = 0.8, num = 12 }\nC = { start = 0.2, stop = 0.4, num = 10 }\n");
   const std::string args = tmp.file("s.toml") + " --threads 1 -q -o ";
   const int whole = test::start_chaosweep("sweep " + args + tmp.file("whole.h5"));
   const int pid = test::start_chaosweep("sweep " + args + tmp.file("r.h5") + " --flush-seconds 1");
@@ -211,7 +215,7 @@ TEST(CliMerge, KeepsAnInterruptedSweepsPartialFileAndMergesBesideItOnlyWithForce
   TempDir tmp;
   write_shard(tmp.file("s0.h5"), "h", 0, 2, 40);
   write_shard(tmp.file("s1.h5"), "h", 1, 2, 40);
-  write_shard(tmp.file("r.h5"), "other", 0, 1, 10, 4);  // an interrupted sweep's 4 rows ...
+  write_shard(tmp.file("r.h5"), "other", 0, 1, 10, 4);     // an interrupted sweep's 4 rows ...
   fs::rename(tmp.file("r.h5"), tmp.file("r.h5.partial"));  // ... as it leaves them
   const std::string before = test::read_file(tmp.file("r.h5.partial"));
   const std::string shards = " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5");
@@ -251,10 +255,11 @@ TEST(CliMerge, ARunIdOutsideTheSpecNamesTheDamagedShardInLittleTimeAndMemory) {
   // Its peak memory (the old merge listed 1e9 missing run_ids: 8 GB), as its
   // parent sees it: a python3 that runs it (a child forked from this test
   // would count the test's own memory).
-  const auto r = run_chaosweep(args, "/usr/bin/python3 -c 'import resource, subprocess, sys; "
-                                     "rc = subprocess.run(sys.argv[1:]).returncode; "
-                                     "print(\"peak\", resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, "
-                                     "file=sys.stderr); sys.exit(rc)'");
+  const auto r = run_chaosweep(args,
+                               "/usr/bin/python3 -c 'import resource, subprocess, sys; "
+                               "rc = subprocess.run(sys.argv[1:]).returncode; "
+                               "print(\"peak\", resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, "
+                               "file=sys.stderr); sys.exit(rc)'");
   EXPECT_EQ(r.exit_code, 2);
   const auto at = r.err.rfind("peak ");
   ASSERT_NE(at, std::string::npos) << r.err;
@@ -301,7 +306,8 @@ TEST(CliCompare, ARepeatedRunIdIsRefusedEitherWayRoundAndRepeatedParametersCount
     w.append(rows);
     w.finish();
   }
-  for (const std::string& pair : {tmp.file("dup.h5") + " " + tmp.file("b.h5"), tmp.file("b.h5") + " " + tmp.file("dup.h5")}) {
+  for (const std::string& pair :
+       {tmp.file("dup.h5") + " " + tmp.file("b.h5"), tmp.file("b.h5") + " " + tmp.file("dup.h5")}) {
     const auto r = run_chaosweep("compare " + pair);
     EXPECT_EQ(r.exit_code, 2) << r.out;
     EXPECT_TRUE(has(r.err, "dup.h5 holds run_id 0 more than once")) << r.err;
@@ -335,8 +341,9 @@ TEST(CliReaders, ANonIntegerRunIdIsRefusedByCompareTableAndFigure) {
   write_hand_made(tmp.file("float.h5"), reader_columns('f'), 5);
   write_hand_made(tmp.file("int.h5"), reader_columns('i'), 5);
   const std::string f = tmp.file("float.h5");
-  for (const std::string& cmd : {"compare " + f + " " + tmp.file("int.h5"), "compare " + tmp.file("int.h5") + " " + f,
-                                 "table summary " + f, "figure heatmap --x size_x --y sr " + f + " -o " + tmp.file("h.png")}) {
+  for (const std::string& cmd :
+       {"compare " + f + " " + tmp.file("int.h5"), "compare " + tmp.file("int.h5") + " " + f, "table summary " + f,
+        "figure heatmap --x size_x --y sr " + f + " -o " + tmp.file("h.png")}) {
     const auto r = run_chaosweep(cmd);
     EXPECT_EQ(r.exit_code, 2) << cmd << "\n" << r.out;
     EXPECT_TRUE(has(r.err, "column 'run_id' is floating-point, not integers")) << cmd << "\n" << r.err;
@@ -348,15 +355,16 @@ TEST(CliReaders, TableAndFigureRefuseToCountARunTwice) {
   TempDir tmp;
   write_shard(tmp.file("s0.h5"), "h", 0, 2, 40);
   write_shard(tmp.file("s1.h5"), "h", 1, 2, 40);
-  ASSERT_EQ(run_chaosweep("merge -o " + tmp.file("all.h5") + " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5")).exit_code, 0);
+  ASSERT_EQ(
+      run_chaosweep("merge -o " + tmp.file("all.h5") + " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5")).exit_code, 0);
   const std::string s0 = tmp.file("s0.h5"), alias = tmp.path().string() + "/./s0.h5";
   struct Case {
     std::string files, why;
   };
   for (const Case& c : {Case{s0 + " " + s0, "is given twice"}, Case{s0 + " " + alias, "is given twice"},
                         Case{s0 + " " + tmp.file("all.h5"), "both hold run_id 0 of the same spec"}}) {
-    for (const std::string& cmd : {"table summary " + c.files,
-                                   "figure heatmap --x A --y B " + c.files + " -o " + tmp.file("h.png")}) {
+    for (const std::string& cmd :
+         {"table summary " + c.files, "figure heatmap --x A --y B " + c.files + " -o " + tmp.file("h.png")}) {
       const auto r = run_chaosweep(cmd);
       EXPECT_EQ(r.exit_code, 2) << cmd;
       EXPECT_TRUE(has(r.err, c.why)) << cmd << "\n" << r.err;
@@ -374,7 +382,8 @@ TEST(CliReaders, AFifoADeviceOrADirectoryAsAResultFileIsRefusedWithoutBlocking) 
   struct Case {
     std::string file, why;
   };
-  for (const Case& c : {Case{fifo, "is a FIFO, not a result file"}, Case{"/dev/zero", "is a character device, not a result file"}}) {
+  for (const Case& c :
+       {Case{fifo, "is a FIFO, not a result file"}, Case{"/dev/zero", "is a character device, not a result file"}}) {
     for (const std::string& cmd : {"merge -o " + tmp.file("m.h5") + " " + c.file, "compare " + good + " " + c.file,
                                    "compare " + c.file + " " + good, "table summary " + c.file,
                                    "figure heatmap --x A --y B " + c.file + " -o " + tmp.file("h.png")}) {
@@ -437,11 +446,14 @@ TEST(CliStore, ALongEnvironmentPathAndLabelRoundTripThroughEveryCommand) {
   const std::string env = dir + "/map1.toml", label = std::string(150, 'L') + std::string(150, 'l');
   ASSERT_EQ(env.size(), 300u);
   write_file(env, "obstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n");
-  write_file(tmp.file("s.toml"), "[fixed]\nsize = 10\nsr = 1\nmax_time = 800\nenv = \"" + env + "\"\nlabel = \"" + label +
-                                     "\"\n[axes]\nA = [0.4, 0.5, 0.6, 0.7]\n");
+  write_file(tmp.file("s.toml"), "[fixed]\nsize = 10\nsr = 1\nmax_time = 800\nenv = \"" + env + "\"\nlabel = \"" +
+                                     label + "\"\n[axes]\nA = [0.4, 0.5, 0.6, 0.7]\n");
   const std::string spec = tmp.file("s.toml");
   for (const std::string shard : {"0/2", "1/2"})
-    ASSERT_EQ(run_chaosweep("sweep " + spec + " -q --shard " + shard + " -o " + tmp.file("s" + shard.substr(0, 1) + ".h5")).exit_code, 0);
+    ASSERT_EQ(
+        run_chaosweep("sweep " + spec + " -q --shard " + shard + " -o " + tmp.file("s" + shard.substr(0, 1) + ".h5"))
+            .exit_code,
+        0);
   ASSERT_EQ(run_chaosweep("sweep " + spec + " -q -o " + tmp.file("whole.h5")).exit_code, 0);
   const auto merged = run_chaosweep("merge -o " + tmp.file("m.h5") + " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5"));
   ASSERT_EQ(merged.exit_code, 0) << merged.err;

@@ -90,6 +90,7 @@ TEST(CliSweepTerminal, AWideTerminalGetsTheFullLine) {
   TempDir dir;
   const TerminalRun r = sweep_demo_on_terminal(dir, 120);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_TRUE(std::regex_search(r.output, std::regex("280/280 runs \\(100\\.0%\\), [0-9]+ runs/s, ETA 0s, [0-9]+ not ok")))
+  EXPECT_TRUE(
+      std::regex_search(r.output, std::regex("280/280 runs \\(100\\.0%\\), [0-9]+ runs/s, ETA 0s, [0-9]+ not ok")))
       << r.output;
 }

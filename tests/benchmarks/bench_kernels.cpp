@@ -4,12 +4,12 @@
 
 #include <cmath>
 
-#include "kernels/systems/arnold_flow.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
 #include "kernels/lanes/lane_arrays.hpp"
-#include "kernels/planners/planner.hpp"
 #include "kernels/math/sincos.hpp"
+#include "kernels/planners/planner.hpp"
+#include "kernels/systems/arnold_flow.hpp"
 
 using namespace chaosweep;
 
@@ -134,14 +134,37 @@ void BM_lane_kernel(benchmark::State& state) {
   LaneArrays a;
   a.lanes = lanes;
   for (int l = 0; l < lanes; ++l) {
-    a.x[l] = 0.01 * l; a.y[l] = 1.0; a.z[l] = 0.0;
-    a.sx[l] = std::sin(a.x[l]); a.cx[l] = std::cos(a.x[l]); a.sy[l] = std::sin(1.0); a.cy[l] = std::cos(1.0);
-    a.sz[l] = 0.0; a.cz[l] = 1.0;
-    a.kA[l] = 0.025; a.kB[l] = 0.0125; a.kC[l] = 0.0125; a.pos6[l] = 0.1 / 6; a.small[l] = 1;  // A, B, C = 0.5, 0.25, 0.25; h = 0.1
-    a.X[l] = a.Y[l] = 25; a.t[l] = 0; a.fh[l] = 0.1; a.budget[l] = 1e300; a.stuck_time[l] = 1e300;
-    a.t_last_new[l] = 0; a.seg_step[l] = 0; a.niter[l] = 1000; a.steps[l] = 0;
-    a.lo_x[l] = a.lo_y[l] = -1e300; a.hi_x[l] = a.hi_y[l] = 1e300; a.inv_cell[l] = 0; a.max_i[l] = a.max_j[l] = 0;
-    a.cell_i[l] = a.cell_j[l] = 0; a.fast[l] = 1; a.fold[l] = a.UX[l] = a.UY[l] = 0; a.clear[l] = nullptr;
+    a.x[l] = 0.01 * l;
+    a.y[l] = 1.0;
+    a.z[l] = 0.0;
+    a.sx[l] = std::sin(a.x[l]);
+    a.cx[l] = std::cos(a.x[l]);
+    a.sy[l] = std::sin(1.0);
+    a.cy[l] = std::cos(1.0);
+    a.sz[l] = 0.0;
+    a.cz[l] = 1.0;
+    a.kA[l] = 0.025;
+    a.kB[l] = 0.0125;
+    a.kC[l] = 0.0125;
+    a.pos6[l] = 0.1 / 6;
+    a.small[l] = 1;  // A, B, C = 0.5, 0.25, 0.25; h = 0.1
+    a.X[l] = a.Y[l] = 25;
+    a.t[l] = 0;
+    a.fh[l] = 0.1;
+    a.budget[l] = 1e300;
+    a.stuck_time[l] = 1e300;
+    a.t_last_new[l] = 0;
+    a.seg_step[l] = 0;
+    a.niter[l] = 1000;
+    a.steps[l] = 0;
+    a.lo_x[l] = a.lo_y[l] = -1e300;
+    a.hi_x[l] = a.hi_y[l] = 1e300;
+    a.inv_cell[l] = 0;
+    a.max_i[l] = a.max_j[l] = 0;
+    a.cell_i[l] = a.cell_j[l] = 0;
+    a.fast[l] = 1;
+    a.fold[l] = a.UX[l] = a.UY[l] = 0;
+    a.clear[l] = nullptr;
   }
   CountingSink sink;
   for (auto _ : state) {

@@ -3,24 +3,24 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 #include <tuple>
-#include <filesystem>
 
-#include "engine/spec/environment_loader.hpp"
-#include "engine/store/h5_compare.hpp"
-#include "engine/run/all_pairs_plans.hpp"
-#include "engine/store/h5_store.hpp"
 #include "engine/rows/json_writer.hpp"
 #include "engine/rows/result_columns.hpp"
+#include "engine/run/all_pairs_plans.hpp"
 #include "engine/run/progress.hpp"
-#include "engine/run/simd_choice.hpp"
 #include "engine/run/serial_batch_evaluator.hpp"
+#include "engine/run/simd_choice.hpp"
 #include "engine/run/sweep_runner.hpp"
-#include "engine/run/thread_batch_evaluator.hpp"
-#include "tests/support/sweep_rows.hpp"
-#include "engine/spec/sweep_spec.hpp"
 #include "engine/run/sweep_summary.hpp"
+#include "engine/run/thread_batch_evaluator.hpp"
+#include "engine/spec/environment_loader.hpp"
+#include "engine/spec/sweep_spec.hpp"
+#include "engine/store/h5_compare.hpp"
+#include "engine/store/h5_store.hpp"
+#include "tests/support/sweep_rows.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -137,8 +137,9 @@ TEST(SweepSpec, CaseTablesAreOneAxisOfRows) {
 }
 
 TEST(SweepSpec, LatinHypercubePutsOnePointInEveryStratum) {
-  const char* text = "[sample]\nmethod = \"lhs\"\nn = 50\nseed = 3\nA = { min = 0.3, max = 0.8 }\n"
-                     "C = { min = 0.2, max = 0.4 }\nds_index = [1, 2, 3]\n";
+  const char* text =
+      "[sample]\nmethod = \"lhs\"\nn = 50\nseed = 3\nA = { min = 0.3, max = 0.8 }\n"
+      "C = { min = 0.2, max = 0.4 }\nds_index = [1, 2, 3]\n";
   const SweepSpec s = parse_sweep_spec(text, "x");
   ASSERT_EQ(s.size(), 50);
   for (const auto& [key, lo, width] : {std::tuple{"A", 0.3, 0.5}, std::tuple{"C", 0.2, 0.2}}) {
@@ -271,8 +272,8 @@ TEST(SweepSpec, ExtendsAnotherSpecAndAddsAxes) {
 }
 
 TEST(SweepSpec, AcceptsAliasesAndTuples) {
-  const SweepSpec s = parse_sweep_spec(
-      "[fixed]\nsize = [40, 30]\nic = [0.1, 0.2, 0.3]\n[axes]\nstart = [[1, 1], [2, 3]]\n", "x");
+  const SweepSpec s =
+      parse_sweep_spec("[fixed]\nsize = [40, 30]\nic = [0.1, 0.2, 0.3]\n[axes]\nstart = [[1, 1], [2, 3]]\n", "x");
   const RunParams p = s.run(1).params;
   EXPECT_EQ(p.size_x, 40.0);
   EXPECT_EQ(p.size_y, 30.0);
@@ -409,10 +410,13 @@ TEST(SweepSpecParts, LabelDefaultsToThePartNameUnlessTheSpecGivesOne) {
 TEST(SweepSpecParts, BadPartsFailNamingTheLocation) {
   const std::string part = "[[part]]\nname = \"a\"\n";
   // A key set twice: top-level fixed and part, or twice in one part.
-  EXPECT_NE(error_of("[fixed]\nsr = 2\n" + part + "[part.fixed]\nsr = 1\n").find("spec.toml: part[0].fixed.sr: is also set in fixed.sr"),
+  EXPECT_NE(error_of("[fixed]\nsr = 2\n" + part + "[part.fixed]\nsr = 1\n")
+                .find("spec.toml: part[0].fixed.sr: is also set in fixed.sr"),
             std::string::npos);
-  EXPECT_NE(error_of("[fixed]\nsr = 2\n" + part + "[part.axes]\nsr = [1, 2]\n").find("part[0].axes.sr"), std::string::npos);
-  EXPECT_NE(error_of(part + "[part.fixed]\nc = 0.5\n[part.axes]\nc = [0.1]\n").find("part[0].axes.c: is also set in part[0].fixed.c"),
+  EXPECT_NE(error_of("[fixed]\nsr = 2\n" + part + "[part.axes]\nsr = [1, 2]\n").find("part[0].axes.sr"),
+            std::string::npos);
+  EXPECT_NE(error_of(part + "[part.fixed]\nc = 0.5\n[part.axes]\nc = [0.1]\n")
+                .find("part[0].axes.c: is also set in part[0].fixed.c"),
             std::string::npos);
   EXPECT_NE(error_of(part + "[part.axes]\nc = [0.1]\n[[part.zip]]\nc = [0.2]\n").find("one place"), std::string::npos);
   // The same key in two parts is fine: each part is its own product.
@@ -423,9 +427,11 @@ TEST(SweepSpecParts, BadPartsFailNamingTheLocation) {
   EXPECT_NE(unknown.find("allowed: name, fixed, axes, zip, case, sample"), std::string::npos);
   EXPECT_NE(error_of(part + "extends = \"x.toml\"\n").find("unknown key 'extends'"), std::string::npos);
   EXPECT_NE(error_of(part + "[[part.part]]\nname = \"b\"\n").find("parts do not nest"), std::string::npos);
-  EXPECT_NE(error_of(part + "[[part]]\nname = \"b\"\n[part.axes]\nsr = [0.5, 0]\n").find("spec.toml: part[1].axes.sr[1]"),
+  EXPECT_NE(
+      error_of(part + "[[part]]\nname = \"b\"\n[part.axes]\nsr = [0.5, 0]\n").find("spec.toml: part[1].axes.sr[1]"),
+      std::string::npos);
+  EXPECT_NE(error_of(part + "[part.axes]\nfoo = [1]\n").find("part[0].axes.foo[0]: unknown key 'foo'"),
             std::string::npos);
-  EXPECT_NE(error_of(part + "[part.axes]\nfoo = [1]\n").find("part[0].axes.foo[0]: unknown key 'foo'"), std::string::npos);
   EXPECT_NE(error_of(part + "case = [ { sr = 1 }, { sr = -1 } ]\n").find("part[0].case[1].sr"), std::string::npos);
   EXPECT_NE(error_of("[[part]]\naxes = { c = [0.1] }\n").find("spec.toml: part[0]: needs a name"), std::string::npos);
   EXPECT_NE(error_of(part + part).find("spec.toml: part[1].name"), std::string::npos);
@@ -446,8 +452,7 @@ TEST(SweepSpecParts, APartMustNotSetAKeyOfATopLevelAxis) {
 
 TEST(SweepSpecParts, ExtendingASpecKeepsItsPartsAndAppendsNewOnes) {
   TempDir tmp;
-  write_file(tmp.file("base.toml"),
-             "[fixed]\nsr = 4\nsize = 20\n[[part]]\nname = \"a\"\naxes = { A = [0.4, 0.5] }\n");
+  write_file(tmp.file("base.toml"), "[fixed]\nsr = 4\nsize = 20\n[[part]]\nname = \"a\"\naxes = { A = [0.4, 0.5] }\n");
   write_file(tmp.file("more.toml"),
              "[sweep]\nextends = \"base.toml\"\n[fixed]\nsr = 2\n[axes]\nseed = [0, 1, 2]\n"
              "[[part]]\nname = \"b\"\nfixed = { A = 0.6 }\n");
@@ -671,7 +676,7 @@ A = [0.45, 0.5]
   int ok = 0;
   for (const RunRow& r : reference) ok += r.result.status == Status::ok;
   EXPECT_GT(ok, 5);  // most of these runs reach dc: the comparison covers whole runs
-  EXPECT_EQ(reference[28].result.status, Status::invalid);  // case 14 of 17, A = 0.45
+  EXPECT_EQ(reference[28].result.status, Status::invalid);                             // case 14 of 17, A = 0.45
   EXPECT_EQ(reference[26].result.status, Status::ok) << reference[26].result.message;  // the Chebyshev run
 }
 
@@ -699,8 +704,10 @@ TEST(Progress, LineFitsTheTerminalWidth) {
   EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0, 16), "25.0% ETA 30s");
   EXPECT_EQ(ProgressReporter::line(250, 1000, 12, 10.0, 8), "25.0% E");
   for (int width : {1, 2, 10, 20, 30, 40, 50, 60, 80, 200})
-    for (const auto& [done, total, failed, s] : {std::tuple{0LL, 0LL, 0LL, 0.0}, {123456789LL, 9876543210LL, 4567890LL, 86400.0 * 30},
-                                                 {5LL, 7LL, 0LL, 1e-6}, {999999LL, 1000000LL, 999999LL, 3.5}}) {
+    for (const auto& [done, total, failed, s] : {std::tuple{0LL, 0LL, 0LL, 0.0},
+                                                 {123456789LL, 9876543210LL, 4567890LL, 86400.0 * 30},
+                                                 {5LL, 7LL, 0LL, 1e-6},
+                                                 {999999LL, 1000000LL, 999999LL, 3.5}}) {
       const std::string line = ProgressReporter::line(done, total, failed, s, width);
       EXPECT_LT(int(line.size()), std::max(width, 1)) << width << ": " << line;
       EXPECT_FALSE(line.empty() && width > 1) << width;
@@ -724,7 +731,7 @@ TEST(Compare, MannWhitneyTellsShiftedFromSameDistributions) {
   std::vector<double> x, y, z;
   for (int i = 0; i < 200; ++i) {
     x.push_back(std::sin(i * 1.7) * 100);
-    y.push_back(std::sin(i * 2.3 + 1) * 100);  // same spread, other samples
+    y.push_back(std::sin(i * 2.3 + 1) * 100);   // same spread, other samples
     z.push_back(std::sin(i * 1.7) * 100 + 60);  // shifted
   }
   EXPECT_NEAR(mann_whitney_p(x, x), 1.0, 1e-12);
@@ -741,7 +748,8 @@ TEST(BatchEvaluator, RefusesSpansOfDifferentSizesAndTuplesWithoutAnEnvironment) 
   std::vector<RunResult> one(1), two(2);
   const ThreadBatchEvaluator lanes(1);
   const SerialBatchEvaluator serial;
-  for (const BatchEvaluator* e : {static_cast<const BatchEvaluator*>(&lanes), static_cast<const BatchEvaluator*>(&serial)}) {
+  for (const BatchEvaluator* e :
+       {static_cast<const BatchEvaluator*>(&lanes), static_cast<const BatchEvaluator*>(&serial)}) {
     EXPECT_THROW(e->evaluate(tuples, one), std::invalid_argument);
     tuples[1].env.reset();
     EXPECT_THROW(e->evaluate(tuples, two), std::invalid_argument);
@@ -757,7 +765,8 @@ TEST(BatchEvaluator, EveryImplementationReportsProgressMarksFinishedSlotsAndStop
   for (std::int64_t i = 0; i < s.size(); ++i) tuples.push_back(resolve_run(i, s.run(i), cache));
   const ThreadBatchEvaluator lanes(2);
   const SerialBatchEvaluator serial;
-  for (const BatchEvaluator* e : {static_cast<const BatchEvaluator*>(&lanes), static_cast<const BatchEvaluator*>(&serial)}) {
+  for (const BatchEvaluator* e :
+       {static_cast<const BatchEvaluator*>(&lanes), static_cast<const BatchEvaluator*>(&serial)}) {
     std::vector<RunResult> out(tuples.size());
     ProgressCounters counters;
     auto finished = std::make_unique<std::atomic<std::uint8_t>[]>(tuples.size());
@@ -812,9 +821,8 @@ TEST(H5Store, RoundTripsRowsAndProvenance) {
 }
 
 TEST(H5Store, HasOneColumnPerParameterAndOutput) {
-  for (const char* name : {"run_id", "env", "planner", "A", "B", "C", "f", "ds_index", "sr", "size_x",
-                           "start_x", "status", "coverage_time", "final_coverage", "steps", "t_opt",
-                           "pr", "wall_time"})
+  for (const char* name : {"run_id", "env", "planner", "A", "B", "C", "f", "ds_index", "sr", "size_x", "start_x",
+                           "status", "coverage_time", "final_coverage", "steps", "t_opt", "pr", "wall_time"})
     EXPECT_NE(find_column(name), nullptr) << name;
 }
 
@@ -824,8 +832,7 @@ TEST(Json, WritesEveryColumnAndNanAsNull) {
   RunRow row;
   row.result.status = Status::timeout;
   const std::string j = row_to_json(row, false);
-  for (const Column& c : result_columns())
-    EXPECT_NE(j.find("\"" + c.name + "\":"), std::string::npos) << c.name;
+  for (const Column& c : result_columns()) EXPECT_NE(j.find("\"" + c.name + "\":"), std::string::npos) << c.name;
   EXPECT_NE(j.find("\"coverage_time\":null"), std::string::npos) << j;
   EXPECT_NE(j.find("\"status\":\"timeout\""), std::string::npos) << j;
   EXPECT_NE(j.find("\"dt\":0.1,"), std::string::npos) << j;  // shortest round-trip text

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "engine/spec/environment_loader.hpp"
-#include "engine/store/h5_store.hpp"
-#include "kernels/planners/planner.hpp"
 #include "engine/spec/run_tuple.hpp"
 #include "engine/spec/sweep_spec.hpp"
+#include "engine/store/h5_store.hpp"
+#include "kernels/planners/planner.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -187,8 +187,9 @@ TEST(Environment, MalformedFileIsRefusedNamingTheFileAndTheLine) {
 
 TEST(Environment, UnknownKeysAreRefusedListingTheAllowedOnes) {
   std::string e = env_error("colour = \"red\"\n");
-  EXPECT_TRUE(has(e, "environment env.toml: unknown key 'colour' (allowed: name, description, units, size, start, "
-                     "start_units, obstacles, clutter)"))
+  EXPECT_TRUE(has(e,
+                  "environment env.toml: unknown key 'colour' (allowed: name, description, units, size, start, "
+                  "start_units, obstacles, clutter)"))
       << e;
   e = env_error("obstacles = [{ x = 0.1, y = 0.1, w = 0.1, h = 0.1, d = 1 }]\n");
   EXPECT_TRUE(has(e, "obstacles[0] has unknown key 'd' (allowed: x, y, w, h)")) << e;
@@ -204,8 +205,8 @@ TEST(Environment, WrongTypesAreRefusedNamingTheKey) {
   EXPECT_TRUE(has(env_error("start = [0.5, 0.5]\nstart_units = 1\n"), "'start_units' must be \"relative\" or \"m\""));
   EXPECT_TRUE(has(env_error("obstacles = 3\n"), "'obstacles' must be an array of {x, y, w, h} tables"));
   EXPECT_TRUE(has(env_error("obstacles = [1]\n"), "obstacles[0] must be a table {x, y, w, h}"));
-  EXPECT_TRUE(has(env_error("obstacles = [{ x = \"a\", y = 0.1, w = 0.1, h = 0.1 }]\n"),
-                  "'obstacles[0].x' must be a number"));
+  EXPECT_TRUE(
+      has(env_error("obstacles = [{ x = \"a\", y = 0.1, w = 0.1, h = 0.1 }]\n"), "'obstacles[0].x' must be a number"));
   EXPECT_TRUE(has(env_error("clutter = 3\n"), "'clutter' must be a table"));
 }
 
@@ -219,16 +220,17 @@ TEST(Environment, NanAndInfAreRefusedNamingTheKey) {
                   "'obstacles[0].w' = inf must be a finite number"));
   EXPECT_TRUE(has(env_error("start = [-inf, 0.5]\n"), "'start[0]' = -inf must be a finite number"));
   EXPECT_TRUE(has(env_error("size = 0\n"), "'size' = 0 x 0 must be positive"));
-  EXPECT_TRUE(has(env_error("obstacles = [{ x = 0.1, y = 0.1, w = 0, h = 0.1 }]\n"),
-                  "obstacles[0]: w and h must be positive"));
+  EXPECT_TRUE(
+      has(env_error("obstacles = [{ x = 0.1, y = 0.1, w = 0, h = 0.1 }]\n"), "obstacles[0]: w and h must be positive"));
 }
 
 TEST(Environment, AnObstacleOutsideTheMapIsRefusedNamingItAndTheMapBounds) {
   // Partly outside (relative units, on the run's 10 m map): the second obstacle.
   std::string e = env_error(
       "obstacles = [\n  { x = 0.1, y = 0.1, w = 0.1, h = 0.1 },\n  { x = 0.8, y = 0.1, w = 0.4, h = 0.1 },\n]\n");
-  EXPECT_TRUE(has(e, "environment env.toml: obstacles[1] spans [8, 12] x [1, 2] m: it reaches outside the map "
-                     "[0, 10] x [0, 10] m"))
+  EXPECT_TRUE(has(e,
+                  "environment env.toml: obstacles[1] spans [8, 12] x [1, 2] m: it reaches outside the map "
+                  "[0, 10] x [0, 10] m"))
       << e;
   EXPECT_TRUE(has(e, "x + w <= 1")) << e;
   // Wholly outside.
@@ -241,7 +243,8 @@ TEST(Environment, AnObstacleOutsideTheMapIsRefusedNamingItAndTheMapBounds) {
   e = env_error("units = \"m\"\nsize = [20, 10]\nobstacles = [{ x = 15, y = 8, w = 2, h = 3 }]\n");
   EXPECT_TRUE(has(e, "obstacles[0] spans [15, 17] x [8, 11] m: it reaches outside the map [0, 20] x [0, 10] m")) << e;
   // Touching the edge is inside, whatever the rounding of x + w.
-  EXPECT_EQ(env_error("obstacles = [{ x = 0.7, y = 0.6, w = 0.3, h = 0.4 }, { x = 0, y = 0, w = 0.1, h = 0.1 }]\n"), "");
+  EXPECT_EQ(env_error("obstacles = [{ x = 0.7, y = 0.6, w = 0.3, h = 0.4 }, { x = 0, y = 0, w = 0.1, h = 0.1 }]\n"),
+            "");
   EXPECT_EQ(env_error("units = \"m\"\nsize = 10\nobstacles = [{ x = 9, y = 0, w = 1, h = 10 }]\n"), "");
 }
 
@@ -252,9 +255,9 @@ TEST(Environment, ClutterThatCannotFitInTheMapIsRefusedAndGeneratedObstaclesStay
   EXPECT_TRUE(has(e, "= 10.3 m does not fit in the map (10 x 10 m)")) << e;
   // Sides up to most of the map: every generated obstacle lies inside it.
   for (std::uint64_t seed = 0; seed < 50; ++seed) {
-    const Environment env = parse_environment(
-        "clutter = { seed = " + std::to_string(seed) + ", occupancy = 0.3, min_side = 0.1, max_side = 0.9, gap = 0.02 }\n",
-        "env.toml", 10, 10);
+    const Environment env = parse_environment("clutter = { seed = " + std::to_string(seed) +
+                                                  ", occupancy = 0.3, min_side = 0.1, max_side = 0.9, gap = 0.02 }\n",
+                                              "env.toml", 10, 10);
     for (const Rect& r : env.obstacles) {
       EXPECT_GE(r.x0, 0.0);
       EXPECT_GE(r.y0, 0.0);
@@ -356,10 +359,10 @@ TEST(H5Store, BrokenAndForeignFilesAreNamedWithoutAnHdf5ErrorDump) {
     const char* file;
     const char* why;
   };
-  for (const Case& c : {Case{"truncated.h5", "is truncated or damaged: HDF5 cannot open it"},
-                        Case{"text.h5", "is not an HDF5 file"}, Case{"missing.h5", "does not exist"},
-                        Case{"no-runs.h5", "has no /runs dataset"},
-                        Case{"not-compound.h5", "/runs is not a table of columns"}}) {
+  for (const Case& c :
+       {Case{"truncated.h5", "is truncated or damaged: HDF5 cannot open it"}, Case{"text.h5", "is not an HDF5 file"},
+        Case{"missing.h5", "does not exist"}, Case{"no-runs.h5", "has no /runs dataset"},
+        Case{"not-compound.h5", "/runs is not a table of columns"}}) {
     const std::string path = tmp.file(c.file);
     auto expect_named = [&](const char* reader, auto&& read) {
       testing::internal::CaptureStderr();

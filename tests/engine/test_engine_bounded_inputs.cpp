@@ -110,7 +110,8 @@ TEST(SweepSpec, OnlyRegularFilesOfBoundedSizeAreReadAsSpecsOrEnvironments) {
   std::filesystem::resize_file(huge, max_input_bytes);
   EXPECT_EQ(read_input_file(huge, "x").size(), max_input_bytes);
   // A missing file says why.
-  EXPECT_TRUE(has(load_error(tmp.file("none.toml")), "none.toml: cannot open the sweep spec (No such file or directory)"));
+  EXPECT_TRUE(
+      has(load_error(tmp.file("none.toml")), "none.toml: cannot open the sweep spec (No such file or directory)"));
 }
 
 TEST(SweepSpec, IntegersBeyondTwoToThe53AreRefusedNamingTheKey) {
@@ -165,14 +166,17 @@ TEST(SweepSpec, ASpecThatSetsNothingIsRefused) {
       parse_sweep_spec(text, "spec.toml");
       ADD_FAILURE() << "accepted: " << text;
     } catch (const SpecError& e) {
-      EXPECT_TRUE(has(e.what(), "spec.toml: the spec is empty (it sets nothing): it would be one run of the default parameters")) << e.what();
+      EXPECT_TRUE(has(e.what(),
+                      "spec.toml: the spec is empty (it sets nothing): it would be one run of the default parameters"))
+          << e.what();
     }
   }
   // An extended spec that sets nothing is named; one that sets something carries its child.
   TempDir tmp;
   write_file(tmp.file("empty.toml"), "");
   write_file(tmp.file("child.toml"), "[sweep]\nextends = \"empty.toml\"\n");
-  EXPECT_TRUE(has(load_error(tmp.file("child.toml")), "empty.toml: the spec is empty")) << load_error(tmp.file("child.toml"));
+  EXPECT_TRUE(has(load_error(tmp.file("child.toml")), "empty.toml: the spec is empty"))
+      << load_error(tmp.file("child.toml"));
   write_file(tmp.file("base.toml"), "[fixed]\nsr = 2\n");
   write_file(tmp.file("child.toml"), "[sweep]\nextends = \"base.toml\"\n");
   EXPECT_EQ(load_error(tmp.file("child.toml")), "");
@@ -184,19 +188,19 @@ TEST(Environment, ClutterOfSquaresTooSmallForItsOccupancyIsRefused) {
   // 1e-9 of a 10 m map: 5e17 squares to reach 50%. The generator tried
   // 100,000 of them, each against every square placed: it seemed to hang.
   try {
-    parse_environment("clutter = { seed = 1, occupancy = 0.5, min_side = 1e-9, max_side = 2e-9, gap = 0 }\n", "env.toml",
-                      10, 10);
+    parse_environment("clutter = { seed = 1, occupancy = 0.5, min_side = 1e-9, max_side = 2e-9, gap = 0 }\n",
+                      "env.toml", 10, 10);
     FAIL() << "accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_TRUE(has(e.what(), "environment env.toml: clutter.occupancy = 0.5 with squares of min_side = 1e-08 m takes up "
-                              "to 5e+17 squares (more than 100000, the generator's attempts): raise clutter.min_side or "
-                              "lower clutter.occupancy"))
+    EXPECT_TRUE(has(e.what(),
+                    "environment env.toml: clutter.occupancy = 0.5 with squares of min_side = 1e-08 m takes up "
+                    "to 5e+17 squares (more than 100000, the generator's attempts): raise clutter.min_side or "
+                    "lower clutter.occupancy"))
         << e.what();
   }
   // Many small squares within the bound: generated, and indexed for the run.
-  const Environment env =
-      parse_environment("clutter = { seed = 1, occupancy = 0.1, min_side = 0.005, max_side = 0.006, gap = 0.001 }\n",
-                        "env.toml", 10, 10);
+  const Environment env = parse_environment(
+      "clutter = { seed = 1, occupancy = 0.1, min_side = 0.005, max_side = 0.006, gap = 0.001 }\n", "env.toml", 10, 10);
   EXPECT_GT(env.obstacles.size(), 1000u);
   EXPECT_NE(env.usable_index(), nullptr);
 }

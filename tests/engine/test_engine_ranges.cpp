@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "engine/spec/decimal_range.hpp"
-#include "kernels/core/param_table.hpp"
 #include "engine/spec/sweep_spec.hpp"
-#include "tests/support/test_util.hpp"
 #include "engine/spec/toml.hpp"
+#include "kernels/core/param_table.hpp"
+#include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
 
@@ -83,10 +83,12 @@ void expect_decimal_count_range(double start, double stop, std::int64_t num, con
   EXPECT_EQ(got.back(), stop) << where;
   const int p = std::max(decimals_of(start), decimals_of(stop));
   ASSERT_LE(p, 12) << where << ": the check below needs the scaled integers exact in a long double";
-  const long double s = std::round(static_cast<long double>(start) * pow10_ld(p)), t = std::round(static_cast<long double>(stop) * pow10_ld(p));
+  const long double s = std::round(static_cast<long double>(start) * pow10_ld(p)),
+                    t = std::round(static_cast<long double>(stop) * pow10_ld(p));
   for (std::int64_t i = 1; i + 1 < num; ++i) {
     const long double x = (s * (num - 1) + (t - s) * i) / ((num - 1) * pow10_ld(p));
-    EXPECT_TRUE(nearest_to(got[std::size_t(i)], x)) << where << "[" << i << "] = " << format_number(got[std::size_t(i)]);
+    EXPECT_TRUE(nearest_to(got[std::size_t(i)], x))
+        << where << "[" << i << "] = " << format_number(got[std::size_t(i)]);
   }
 }
 
@@ -114,8 +116,10 @@ TEST(DecimalRange, StepRangesGiveTheDecimalsAPersonWrites) {
 }
 
 TEST(DecimalRange, CountRangesKeepTheirEndsAndAreAsExactAsADoubleCanBe) {
-  EXPECT_EQ(DecimalRange::by_count(0.35, 0.65, 7).values(), (std::vector<double>{0.35, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65}));
-  EXPECT_EQ(DecimalRange::by_count(0.1, 0.8, 8).values(), (std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8}));
+  EXPECT_EQ(DecimalRange::by_count(0.35, 0.65, 7).values(),
+            (std::vector<double>{0.35, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65}));
+  EXPECT_EQ(DecimalRange::by_count(0.1, 0.8, 8).values(),
+            (std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8}));
   EXPECT_EQ(DecimalRange::by_count(0, 1, 5).values(), (std::vector<double>{0, 0.25, 0.5, 0.75, 1}));
   EXPECT_EQ(DecimalRange::by_count(2, 2, 1).values(), (std::vector<double>{2}));
   // 0.9 / 31 does not terminate: the double nearest each exact value
@@ -174,7 +178,8 @@ TEST(SweepSpec, EveryRangeOfEveryShippedSpecIsDecimalExact) {
       return out;
     };
     // Walk every table of the file; a range is a table of start, stop and step or num.
-    std::function<void(const toml::table&, const std::string&)> walk = [&](const toml::table& t, const std::string& at) {
+    std::function<void(const toml::table&, const std::string&)> walk = [&](const toml::table& t,
+                                                                           const std::string& at) {
       for (auto&& [k, node] : t) {
         const std::string key(k.str()), where = path + ": " + at + key;
         if (const toml::array* arr = node.as_array()) {

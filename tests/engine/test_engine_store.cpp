@@ -10,13 +10,13 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "engine/store/h5_store.hpp"
 #include "engine/rows/result_columns.hpp"
-#include "engine/spec/text_widths.hpp"
-#include "engine/store/rollback_driver.hpp"
 #include "engine/run/sweep_runner.hpp"
-#include "tests/support/sweep_rows.hpp"
 #include "engine/spec/sweep_spec.hpp"
+#include "engine/spec/text_widths.hpp"
+#include "engine/store/h5_store.hpp"
+#include "engine/store/rollback_driver.hpp"
+#include "tests/support/sweep_rows.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -76,7 +76,7 @@ void die_during_a_write(const std::string& partial, hsize_t more) {
     H5Sselect_hyperslab(fs, H5S_SELECT_SET, &rows, nullptr, &more, nullptr);
     H5Dwrite(d, native, ms, fs, H5P_DEFAULT, zeros.data());
     H5Fflush(f, H5F_SCOPE_GLOBAL);  // the new extent, chunk index and header go to the file
-    _exit(0);                        // no close: the session never ends
+    _exit(0);                       // no close: the session never ends
   }
   int status = 0;
   waitpid(pid, &status, 0);
@@ -138,8 +138,8 @@ TEST(H5Store, TextOfAnyLengthIsStoredWholeOrRefusedNamingTheColumn) {
   const std::string env = "/" + std::string(299, 'e'), label = std::string(300, 'l'),
                     message = "start lies inside obstacle #0 of environment '" + env + "'";
   // Variable-length (no spec to size it) and fixed-length sized to fit.
-  for (const auto& widths : {std::map<std::string, std::size_t>{},
-                             std::map<std::string, std::size_t>{{"env", 304}, {"label", 301}}}) {
+  for (const auto& widths :
+       {std::map<std::string, std::size_t>{}, std::map<std::string, std::size_t>{{"env", 304}, {"label", 301}}}) {
     const std::string out = tmp.file("r" + std::to_string(widths.size()) + ".h5");
     H5RunWriter w(out, H5RunWriter::Mode::create, {}, widths);
     w.append(rows_of(0, 3, env, label, message));
@@ -229,7 +229,8 @@ TEST(TextWidths, HoldTheEnvironmentAndLabelOfEveryRunOfEveryShippedSpec) {
   EXPECT_GE(specs, 10);
   const SweepSpec parts = parse_sweep_spec(
       "[fixed]\nsr = 2\n[[part]]\nname = \"a part with a long name\"\n[[part]]\nname = \"p2\"\n"
-      "[part.axes]\nlabel = [\"short\", 12345.678]\nenv = [\"empty\", \"" + std::string(300, 'p') + ".toml\"]\n",
+      "[part.axes]\nlabel = [\"short\", 12345.678]\nenv = [\"empty\", \"" +
+          std::string(300, 'p') + ".toml\"]\n",
       "x");
   const auto w = text_widths(parts);
   EXPECT_GT(w.at("env"), 308u);
@@ -245,11 +246,12 @@ SweepSpec few_ms_runs(int a_values) {
                           "timed.toml");
 }
 
-// One batch for the whole sweep, handed over every 20 ms.
+// One batch for the whole sweep, handed over every 2 ms (the runs take tens
+// of ms in all even on a fast machine, so the hand-over must split them).
 SweepOptions one_batch_timed() {
   SweepOptions opt;
   opt.batch_size = 1 << 20;
-  opt.flush_seconds = 0.02;
+  opt.flush_seconds = 0.002;
   return opt;
 }
 
@@ -257,7 +259,7 @@ SweepOptions one_batch_timed() {
 
 TEST(SweepRunner, FinishedRunsReachTheSinkOnTimeAsARunIdPrefixWhileTheBatchRuns) {
   // One batch: only the timed hand-over can split it.
-  const SweepSpec s = few_ms_runs(10);
+  const SweepSpec s = few_ms_runs(40);
   const SweepOptions opt = one_batch_timed();
   std::vector<std::size_t> pieces;
   std::vector<RunRow> got;
@@ -288,7 +290,8 @@ TEST(SweepRunner, ASinkThatFailsStopsTheRunsAndItsErrorReachesTheCaller) {
   SweepOptions opt = one_batch_timed();
   ProgressCounters counters;
   opt.progress = &counters;
-  EXPECT_THROW(run_sweep(s, ThreadBatchEvaluator(2), opt, [](const std::vector<RunRow>&) { throw std::runtime_error("disk full"); }),
+  EXPECT_THROW(run_sweep(s, ThreadBatchEvaluator(2), opt,
+                         [](const std::vector<RunRow>&) { throw std::runtime_error("disk full"); }),
                std::runtime_error);
   EXPECT_LT(counters.done.load(), s.size()) << "the runs went on after the sink failed";
 }

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <string>
 
-#include "kernels/core/param_table.hpp"
 #include "engine/run/sweep_runner.hpp"
-#include "tests/support/test_util.hpp"
 #include "engine/spec/work_bound.hpp"
+#include "kernels/core/param_table.hpp"
+#include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
 using chaosweep::test::TempDir;
@@ -46,9 +46,11 @@ TEST(WorkBound, EqualsTheSumOverEveryRunWhateverKeyTheAxesSet) {
   const std::string base = "[fixed]\nsize = 10\nsr = 2\n[axes]\nlabel = [\"a\", \"b\", \"c\"]\n";
   for (const ParamInfo& p : param_table()) {
     const std::string key(p.name);
-    const std::string values = p.kind == ParamInfo::Kind::choice
-                                   ? "[\"" + std::string(p.choices.front()) + "\", \"" + std::string(p.choices.back()) + "\"]"
-                                   : "[" + format_number(p.lo) + ", " + format_number(p.kind == ParamInfo::Kind::integer ? std::floor((p.lo + p.hi) / 2) : p.hi) + "]";
+    const std::string values =
+        p.kind == ParamInfo::Kind::choice
+            ? "[\"" + std::string(p.choices.front()) + "\", \"" + std::string(p.choices.back()) + "\"]"
+            : "[" + format_number(p.lo) + ", " +
+                  format_number(p.kind == ParamInfo::Kind::integer ? std::floor((p.lo + p.hi) / 2) : p.hi) + "]";
     std::string text = base + key + " = " + values + "\n";
     if (key == "sr" || key == "size_x" || key == "size_y") text = "[fixed]\n[axes]\n" + key + " = " + values + "\n";
     const bool budget = key == "max_time" || key == "max_pr" || key == "dc" || key == "sr" || key == "v" ||
@@ -79,8 +81,9 @@ TEST(WorkBound, PartsZipsCasesAndSamplesAreBoundedAsTheirRunsAre) {
 }
 
 TEST(WorkBound, ASpecOfABillionRunsCostsOnlyItsBudgetAxes) {
-  const std::string grid = "A = { start = 0.1, stop = 0.9, num = 1000 }\nB = { start = 0.1, stop = 0.9, num = 1000 }\n"
-                           "C = { start = 0.1, stop = 0.9, num = 1000 }\n";
+  const std::string grid =
+      "A = { start = 0.1, stop = 0.9, num = 1000 }\nB = { start = 0.1, stop = 0.9, num = 1000 }\n"
+      "C = { start = 0.1, stop = 0.9, num = 1000 }\n";
   SweepSpec spec = parse_sweep_spec("[fixed]\nsize = 10\nsr = 2\n[axes]\n" + grid, "spec.toml");
   ASSERT_EQ(spec.size(), 1000000000);
   EnvironmentCache cache;
@@ -94,8 +97,8 @@ TEST(WorkBound, ASpecOfABillionRunsCostsOnlyItsBudgetAxes) {
   EXPECT_EQ(w.evaluated, 3);
   // Budget axes with more combinations than max_exact: a seeded sample of
   // that many, close to the sum over every run.
-  spec = parse_sweep_spec("[fixed]\nsize = 10\n[sample]\nn = 20000\nsr = { min = 1, max = 3 }\n[axes]\nA = [0.4, 0.5]\n",
-                          "spec.toml");
+  spec = parse_sweep_spec(
+      "[fixed]\nsize = 10\n[sample]\nn = 20000\nsr = { min = 1, max = 3 }\n[axes]\nA = [0.4, 0.5]\n", "spec.toml");
   w = bound_work(spec, cache, 1000);
   EXPECT_TRUE(w.sampled);
   EXPECT_EQ(w.evaluated, 1000);

@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
+#include "analysis/result_set.hpp"
 #include "engine/store/h5_compare.hpp"
 #include "engine/store/h5_merge.hpp"
 #include "engine/store/h5_store.hpp"
-#include "analysis/result_set.hpp"
 
 namespace {
 
@@ -31,16 +31,22 @@ using namespace chaosweep;
 
 enum Kind : int { i64, i32, u64, f64, f32, fixed_text, variable_text, foreign_array, kinds };
 
-const char* const names[] = {"run_id", "param_hash", "status", "coverage_time", "variant", "env", "size_x", "size_y",
-                             "sr",     "label",      "A",      "message",       "steps",   "wall_time", "x"};
+const char* const names[] = {"run_id", "param_hash", "status", "coverage_time", "variant", "env",
+                             "size_x", "size_y",     "sr",     "label",         "A",       "message",
+                             "steps",  "wall_time",  "x"};
 
 hid_t type_of(Kind k, std::size_t text_size, bool utf8) {
   switch (k) {
-    case i64: return H5Tcopy(H5T_NATIVE_INT64);
-    case i32: return H5Tcopy(H5T_NATIVE_INT32);
-    case u64: return H5Tcopy(H5T_NATIVE_UINT64);
-    case f64: return H5Tcopy(H5T_NATIVE_DOUBLE);
-    case f32: return H5Tcopy(H5T_NATIVE_FLOAT);
+    case i64:
+      return H5Tcopy(H5T_NATIVE_INT64);
+    case i32:
+      return H5Tcopy(H5T_NATIVE_INT32);
+    case u64:
+      return H5Tcopy(H5T_NATIVE_UINT64);
+    case f64:
+      return H5Tcopy(H5T_NATIVE_DOUBLE);
+    case f32:
+      return H5Tcopy(H5T_NATIVE_FLOAT);
     case fixed_text:
     case variable_text: {
       const hid_t t = H5Tcopy(H5T_C_S1);
@@ -64,9 +70,17 @@ struct Col {
 
 // A shard-like layout: the columns readers need, of the store's kinds.
 std::vector<Col> well_formed() {
-  return {{"run_id", i64},   {"param_hash", i64},         {"status", fixed_text, 12}, {"coverage_time", f64},
-          {"variant", fixed_text, 48}, {"env", fixed_text, 8}, {"size_x", f64}, {"size_y", f64}, {"sr", f64},
-          {"label", variable_text},    {"message", variable_text}};
+  return {{"run_id", i64},
+          {"param_hash", i64},
+          {"status", fixed_text, 12},
+          {"coverage_time", f64},
+          {"variant", fixed_text, 48},
+          {"env", fixed_text, 8},
+          {"size_x", f64},
+          {"size_y", f64},
+          {"sr", f64},
+          {"label", variable_text},
+          {"message", variable_text}};
 }
 
 // An attribute: of a shaped file mostly the plausible value (as text, or as a
@@ -76,7 +90,8 @@ void attribute(hid_t file, FuzzedDataProvider& in, const char* name, const std::
   const bool number = !plausible.empty() && plausible.find_first_not_of("0123456789") == std::string::npos;
   const int pick = shaped && in.ConsumeIntegralInRange(0, 7) != 7 ? (number ? 3 : 1) : in.ConsumeIntegralInRange(0, 6);
   switch (pick) {
-    case 0: break;  // absent
+    case 0:
+      break;  // absent
     case 1:
     case 2: {
       const std::string v = shaped || in.ConsumeBool() ? plausible : in.ConsumeRandomLengthString(40);
@@ -88,7 +103,9 @@ void attribute(hid_t file, FuzzedDataProvider& in, const char* name, const std::
       write_attribute(file, {name, v});
       break;
     }
-    case 4: write_attribute(file, {name, in.ConsumeBool()}); break;
+    case 4:
+      write_attribute(file, {name, in.ConsumeBool()});
+      break;
     case 5: {
       const double v = in.ConsumeFloatingPoint<double>();
       const hid_t a = H5Acreate2(file, name, H5T_NATIVE_DOUBLE, scalar, H5P_DEFAULT, H5P_DEFAULT);
@@ -149,9 +166,9 @@ void write_file(FuzzedDataProvider& in, const std::string& path, int index) {
     }
     const hid_t type = H5Tcreate(H5T_COMPOUND, row);
     for (std::size_t k = 0; k < cols.size(); ++k) H5Tinsert(type, cols[k].name.c_str(), offsets[k], types[k]);
-    const std::size_t rows = shaped ? std::size_t((runs_total - index + count - 1) / count) *
-                                          std::size_t(index < runs_total)
-                                    : in.ConsumeIntegralInRange<std::size_t>(0, 300);
+    const std::size_t rows =
+        shaped ? std::size_t((runs_total - index + count - 1) / count) * std::size_t(index < runs_total)
+               : in.ConsumeIntegralInRange<std::size_t>(0, 300);
     const std::size_t rows_kept = shaped && in.ConsumeBool() ? in.ConsumeIntegralInRange<std::size_t>(0, rows) : rows;
     std::vector<unsigned char> buf(row * rows_kept, 0);
     std::vector<std::string> texts;
@@ -173,20 +190,23 @@ void write_file(FuzzedDataProvider& in, const std::string& path, int index) {
         } else if (c.kind == foreign_array) {
           std::memset(p, 7, 8);
         } else {
-          const std::int64_t id = c.name == "run_id" || c.name == "param_hash"
-                                      ? std::int64_t(index) + std::int64_t(r) * count
-                                      : 10;
+          const std::int64_t id =
+              c.name == "run_id" || c.name == "param_hash" ? std::int64_t(index) + std::int64_t(r) * count : 10;
           std::int64_t v = mutate ? in.ConsumeIntegral<std::int64_t>() : id;
           const double d = mutate ? in.ConsumeFloatingPoint<double>() : double(id);
           switch (c.kind) {
             case i64:
-            case u64: std::memcpy(p, &v, 8); break;
+            case u64:
+              std::memcpy(p, &v, 8);
+              break;
             case i32: {
               const std::int32_t w = std::int32_t(v);
               std::memcpy(p, &w, 4);
               break;
             }
-            case f64: std::memcpy(p, &d, 8); break;
+            case f64:
+              std::memcpy(p, &d, 8);
+              break;
             default: {
               const float f = float(d);
               std::memcpy(p, &f, 4);

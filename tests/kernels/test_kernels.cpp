@@ -7,20 +7,20 @@
 #include <iostream>
 #include <numbers>
 #include <random>
-#include <sstream>
 #include <set>
+#include <sstream>
 
-#include "kernels/systems/arnold_flow.hpp"
 #include "kernels/core/boundary.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
-#include "kernels/planners/planner.hpp"
 #include "kernels/core/robot_motion.hpp"
 #include "kernels/math/sincos.hpp"
-#include "tests/support/kernel_test_util.hpp"
 #include "kernels/planners/arnold/transit.hpp"
+#include "kernels/planners/planner.hpp"
+#include "kernels/systems/arnold_flow.hpp"
+#include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
 using chaosweep::test::small_run;
@@ -133,8 +133,8 @@ TEST(SincosShift, StageShiftsStayWithinTheirFormsAtTheModeLimit) {
   }
   EXPECT_LE(worst_tiny, shift_bound(ShiftForm::tiny));
   EXPECT_LE(worst_short, shift_bound(ShiftForm::short_));
-  EXPECT_LE(worst_carry, shift_bound(ShiftForm::carry));  // (7 L^3 + 2 L^4) / 3 at L = 0.1
-  EXPECT_GT(worst_tiny, 0.25 * shift_bound(ShiftForm::tiny));  // not loose by orders (measured 0.0035)
+  EXPECT_LE(worst_carry, shift_bound(ShiftForm::carry));        // (7 L^3 + 2 L^4) / 3 at L = 0.1
+  EXPECT_GT(worst_tiny, 0.25 * shift_bound(ShiftForm::tiny));   // not loose by orders (measured 0.0035)
   EXPECT_GT(worst_carry, 0.1 * shift_bound(ShiftForm::carry));  // measured 0.00026
 }
 
@@ -163,8 +163,8 @@ TEST(Rk4Step, CarriedTrigIsTheNewStatesToRoundingAndExactOutsideSmallShiftMode) 
   for (const Vec3<double> u : {Vec3<double>{0, 1, 0}, Vec3<double>{3.1, -2.9, 1.5}, Vec3<double>{-1.2, 0.4, 3.14}}) {
     const auto a = rk4_step<double>(u, k, heading_select(3), 0.1, 0.1, true);
     const Trig3<double> t = trig3(a.u);
-    for (auto m : {&Trig3<double>::sx, &Trig3<double>::cx, &Trig3<double>::sy, &Trig3<double>::cy,
-                   &Trig3<double>::sz, &Trig3<double>::cz})
+    for (auto m : {&Trig3<double>::sx, &Trig3<double>::cx, &Trig3<double>::sy, &Trig3<double>::cy, &Trig3<double>::sz,
+                   &Trig3<double>::cz})
       EXPECT_NEAR(a.t.*m, t.*m, 5e-16);
     const auto b = rk4_step<double>(u, k, heading_select(3), 0.5, 0.5, false);  // full sincos of the new u
     const Trig3<double> tb = trig3(b.u);
@@ -264,12 +264,14 @@ TEST(Rk4Step, ARunRelabelledWithItsHeadingInZComputesTheSameNumbers) {
     const ArnoldCoeffs<double> k{coeff(rng), coeff(rng), coeff(rng)};
     const bool small = small_shift_mode(h, k.A, k.B, k.C);
     const Rk4Step<double> want = rk4_step<double>(u, trig3(u), k, heading_select(ds), h, 0.1, small);
-    const Rk4Step<double> lane = rk4_step<double>(to_lane(u, ds), to_lane(trig3(u), ds), to_lane(k, ds), HeadingZ{}, h, 0.1, small);
+    const Rk4Step<double> lane =
+        rk4_step<double>(to_lane(u, ds), to_lane(trig3(u), ds), to_lane(k, ds), HeadingZ{}, h, 0.1, small);
     const Vec3<double> got = from_lane(lane.u, ds);
     const Trig3<double> t = from_lane(lane.t, ds);
     ASSERT_TRUE(same(got.x, want.u.x) && same(got.y, want.u.y) && same(got.z, want.u.z)) << i;
     ASSERT_TRUE(same(t.sx, want.t.sx) && same(t.cx, want.t.cx) && same(t.sy, want.t.sy) && same(t.cy, want.t.cy) &&
-                same(t.sz, want.t.sz) && same(t.cz, want.t.cz)) << i;
+                same(t.sz, want.t.sz) && same(t.cz, want.t.cz))
+        << i;
     ASSERT_TRUE(same(lane.dX, want.dX) && same(lane.dY, want.dY)) << i;
     const Vec3<double> back = from_lane(to_lane(u, ds), ds);
     ASSERT_TRUE(same(back.x, u.x) && same(back.y, u.y) && same(back.z, u.z)) << i;
@@ -360,15 +362,15 @@ TEST(RobotMotion, ObstacleResponsesPushMirrorOrBounceAtTheFaceOfLeastPenetration
     return std::pair{hit, Point{robot.x(), robot.y()}};
   };
   const auto [push, push_next] = after(ObstacleResponse::push);
-  EXPECT_DOUBLE_EQ(push.x, 3.5);  // onto the line at fo (Eq. 8 as printed) ...
+  EXPECT_DOUBLE_EQ(push.x, 3.5);       // onto the line at fo (Eq. 8 as printed) ...
   EXPECT_DOUBLE_EQ(push_next.x, 3.5);  // ... and pushed back there by the next step
   const auto [mirror, mirror_next] = after(ObstacleResponse::mirror);
   EXPECT_DOUBLE_EQ(mirror.x, 2.8);  // 2 * 3.5 - 4.2: reflected about that line (Eq. 7's form)
   EXPECT_DOUBLE_EQ(mirror.y, 5.1);
   EXPECT_DOUBLE_EQ(mirror_next.x, 3.3);  // the heading is unchanged: it walks back towards the face
   const auto [bounce, bounce_next] = after(ObstacleResponse::reflect);
-  EXPECT_DOUBLE_EQ(bounce.x, 2.8);        // the same point ...
-  EXPECT_DOUBLE_EQ(bounce_next.x, 2.3);   // ... and from then on the motion along x is reversed
+  EXPECT_DOUBLE_EQ(bounce.x, 2.8);       // the same point ...
+  EXPECT_DOUBLE_EQ(bounce_next.x, 2.3);  // ... and from then on the motion along x is reversed
   EXPECT_DOUBLE_EQ(bounce_next.y, 5.1);
 }
 
@@ -376,8 +378,8 @@ TEST(RobotMotion, ObstacleResponsesPushMirrorOrBounceAtTheFaceOfLeastPenetration
 
 TEST(Obstacles, NoPositionInACellClearOfObstaclesIsPushed) {
   // Table 1's five squares on a 50 m map, cells of 1 m and of 4 m (a clipped last row), fo 0.5 and 2.
-  const Environment env = square_map(50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44},
-                                            {23.5, 23.5, 26.5, 26.5}});
+  const Environment env =
+      square_map(50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}});
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   for (const double cell : {1.0, 4.0})
@@ -404,9 +406,9 @@ TEST(Obstacles, NoPositionInACellClearOfObstaclesIsPushed) {
       EXPECT_GT(n_clear, 0);
       EXPECT_LT(n_clear, grid.free_cells());  // the free cells next to a square are not clear
       if (cell == 1.0) {
-        EXPECT_TRUE(clear[0]);                   // the corner, 5 m from the nearest square
-        EXPECT_FALSE(clear[10 * 50 + 10]);       // inside a square
-        EXPECT_FALSE(clear[10 * 50 + 22]);       // 0.5 m and less from its face x = 22
+        EXPECT_TRUE(clear[0]);              // the corner, 5 m from the nearest square
+        EXPECT_FALSE(clear[10 * 50 + 10]);  // inside a square
+        EXPECT_FALSE(clear[10 * 50 + 22]);  // 0.5 m and less from its face x = 22
       }
     }
 }
@@ -633,13 +635,13 @@ TEST(Planner, ScalingFactorStretchesThePathAtConstantSpeed) {
   // frozen heading the robot covers f times the distance per step.
   RunParams p = small_run(50.0);
   p.A = p.B = p.C = 0.0;
-  p.ic_z = 0.0;  // heading +X
+  p.ic_z = 0.0;       // heading +X
   p.max_time = 5.95;  // the 20th step ends at t = 6.0
   p.start_x = 1.0;
   p.start_y = 25.0;
   p.f = 3.0;
   const RunResult r = run_planner(p, square_map(50.0));
-  EXPECT_EQ(r.steps, 20);            // 6 s of robot time in steps of f*dt = 0.3 s
+  EXPECT_EQ(r.steps, 20);             // 6 s of robot time in steps of f*dt = 0.3 s
   EXPECT_NEAR(r.final_x, 7.0, 1e-9);  // moved v * t = 6 m
 }
 

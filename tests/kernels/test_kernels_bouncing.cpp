@@ -21,12 +21,12 @@
 #include <numeric>
 
 #include "kernels/planners/bouncing/bouncing_cells.hpp"
-#include "kernels/planners/planner.hpp"
-#include "tests/support/kernel_test_util.hpp"
 #include "kernels/planners/bouncing/markov_chain.hpp"
 #include "kernels/planners/bouncing/policy_mixture.hpp"
 #include "kernels/planners/bouncing/roadmap.hpp"
 #include "kernels/planners/bouncing/scc.hpp"
+#include "kernels/planners/planner.hpp"
+#include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
 using namespace chaosweep::bouncing_paper;
@@ -161,7 +161,7 @@ TEST(Seed002Scc, IterativeTarjanHandlesDeepChainIntoLongCycle) {
   ASSERT_EQ(scc.count, L + 1);
   const int cyc = scc.component[L];
   for (int v = L; v < n; ++v) ASSERT_EQ(scc.component[v], cyc);
-  EXPECT_EQ(cyc, 0);  // completed first: sinks get the smallest ids
+  EXPECT_EQ(cyc, 0);                                               // completed first: sinks get the smallest ids
   for (int v = 0; v < L; ++v) ASSERT_EQ(scc.component[v], L - v);  // reverse topological
   int groups = 0;
   const auto pg = persistent_groups(scc, &groups);
@@ -252,8 +252,7 @@ TEST(Seed002Mixture, AlphaIsOnSimplexAndBeatsEverySinglePolicy) {
   const Mixture m = best_mixture(Pi, b);
   EXPECT_GE(m.alpha.minCoeff(), 0.0);
   EXPECT_NEAR(m.alpha.sum(), 1.0, 1e-12);
-  for (int i = 0; i < 3; ++i)
-    EXPECT_LE(m.residual, mixture_residual(Pi, b, Eigen::VectorXd::Unit(3, i)) + 1e-15) << i;
+  for (int i = 0; i < 3; ++i) EXPECT_LE(m.residual, mixture_residual(Pi, b, Eigen::VectorXd::Unit(3, i)) + 1e-15) << i;
   // No point of a coarse simplex grid does better either.
   for (int a = 0; a <= 20; ++a)
     for (int c = 0; a + c <= 20; ++c) {

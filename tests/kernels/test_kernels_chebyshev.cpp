@@ -21,9 +21,7 @@ constexpr double chi2_49_999 = 85.35;
 
 // The raw exponent telescopes (ln|f'(x_i)| = ln k + ln sin t_{i+1} - ln sin t_i,
 // x = cos t), so its error is O(1/n) and 1e6 steps leave it near 1e-6.
-TEST(ChebyshevLyapunov, RawMapAtK6IsLn6) {
-  EXPECT_NEAR(lyapunov_exponent(6, 0.1, 1'000'000), std::log(6.0), 1e-3);
-}
+TEST(ChebyshevLyapunov, RawMapAtK6IsLn6) { EXPECT_NEAR(lyapunov_exponent(6, 0.1, 1'000'000), std::log(6.0), 1e-3); }
 
 TEST(ChebyshevLyapunov, ArcsineTransformedMapIsAlsoLn6ByConjugacy) {
   EXPECT_NEAR(lyapunov_exponent_arcsine(6, 0.1, 1'000'000), std::log(6.0), 1e-3);

@@ -42,7 +42,8 @@ TEST(Seed003Trajectory, ReturnsNPlusOnePointsFromTheStart) {
   EXPECT_EQ(t[0].x, 10.0);
   EXPECT_EQ(t[0].y, 10.0);
   // v h = 0.1 per step: a chord of an arc of length 0.1.
-  for (std::size_t i = 1; i < t.size(); ++i) EXPECT_LE(std::hypot(t[i].x - t[i - 1].x, t[i].y - t[i - 1].y), 0.1 + 1e-12);
+  for (std::size_t i = 1; i < t.size(); ++i)
+    EXPECT_LE(std::hypot(t[i].x - t[i - 1].x, t[i].y - t[i - 1].y), 0.1 + 1e-12);
 }
 
 // Against a fine reference (h / 64), halving h divides the error by ~4 for
@@ -199,7 +200,8 @@ TEST(Seed003Contraction, ContractedTrajectoryStartsAtThePreviousEndAndStaysInThe
     ASSERT_EQ(c.size(), mapped.size());
     EXPECT_EQ(c[0].x, t.x);
     EXPECT_EQ(c[0].y, t.y);
-    for (const Point& p : c) ASSERT_TRUE(inside(p, wp)) << p.x << ", " << p.y << " (target " << t.x << ", " << t.y << ")";
+    for (const Point& p : c)
+      ASSERT_TRUE(inside(p, wp)) << p.x << ", " << p.y << " (target " << t.x << ", " << t.y << ")";
   }
 }
 
@@ -314,8 +316,8 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
       ours[h][s] = 100.0 * coverage_rate(map_to_workplace(seed003_trajectory(r, {double(s), double(s)}, 800), wp), wp);
       EXPECT_GT(ours[h][s], 0.0);
     }
-    std::printf("  (%d,%d) | %6.2f %6.2f %6.2f | %6.2f %6.2f %6.2f\n", s, s, ours[0][s], ours[1][s], ours[2][s], t1[0][s],
-                t1[1][s], t1[2][s]);
+    std::printf("  (%d,%d) | %6.2f %6.2f %6.2f | %6.2f %6.2f %6.2f\n", s, s, ours[0][s], ours[1][s], ours[2][s],
+                t1[0][s], t1[1][s], t1[2][s]);
   }
   for (int h = 0; h < 3; ++h) {
     double m0, s0, m1, s1;
@@ -340,10 +342,10 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
     stats(ours[h], 10, m0, s0);
     std::printf("  %c: mean %.3f sd %.4f\n", "xyz"[h], m0, s0);
   }
-  const int t3n[20] = {200, 300, 500, 800, 1200, 1700, 2300, 3000, 3800, 4700,
+  const int t3n[20] = {200,  300,  500,  800,  1200,  1700,  2300,  3000,  3800,  4700,
                        5700, 6800, 8000, 9300, 10700, 12200, 13800, 15500, 17300, 19200};
   const double t3c[20] = {46.25, 55.75, 52.50, 54.50, 62.50, 59.75, 54.75, 49.75, 54.00, 55.50,
-                          56.50, 58.50, 61.50, 66.00, 39.75, 16.25, 10.00, 10.00, 9.75, 9.75};
+                          56.50, 58.50, 61.50, 66.00, 39.75, 16.25, 10.00, 10.00, 9.75,  9.75};
   const std::vector<Point> full = seed003_trajectory({10, 10}, 19200);
   std::printf("Table 3 (start (10,10), heading z): n | ours | paper\n");
   for (int i = 0; i < 20; ++i) {
@@ -351,10 +353,11 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
     std::printf("  %5d | %6.2f | %6.2f\n", t3n[i], 100.0 * coverage_rate(map_to_workplace(prefix, wp), wp), t3c[i]);
   }
   const std::vector<Point> m8 = map_to_workplace(seed003_trajectory({8, 8}, 800), wp);
-  std::printf("Fig. 13 (start (8,8), n = 800): mapped start (%.2f, %.2f), coverage %.2f%%; contracted to (11,11) "
-              "%.2f%%, to (15,16) %.2f%% (paper: (13.8, 11.6), 49%%, 41%%, 25%%)\n",
-              m8[0].x, m8[0].y, 100.0 * coverage_rate(m8, wp), 100.0 * coverage_rate(contract_to(m8, {11, 11}, wp), wp),
-              100.0 * coverage_rate(contract_to(m8, {15, 16}, wp), wp));
+  std::printf(
+      "Fig. 13 (start (8,8), n = 800): mapped start (%.2f, %.2f), coverage %.2f%%; contracted to (11,11) "
+      "%.2f%%, to (15,16) %.2f%% (paper: (13.8, 11.6), 49%%, 41%%, 25%%)\n",
+      m8[0].x, m8[0].y, 100.0 * coverage_rate(m8, wp), 100.0 * coverage_rate(contract_to(m8, {11, 11}, wp), wp),
+      100.0 * coverage_rate(contract_to(m8, {15, 16}, wp), wp));
   const CandidateSweep lit = candidate_sweep(ContractionRobot{}, {0, 0}, wp, {800, 1900, 100, 0.0});
   const CompleteCoverage cl = complete_coverage(ContractionRobot{}, lit.samples, {10, 10}, wp, 0.90, 30);
   std::printf("Section 6 (paper robot, its 12 samples, no threshold): %zu sections, n = %ld, coverage %.2f%%\n",
@@ -365,8 +368,8 @@ TEST(Seed003Report, PrintsTablesBesideThePaper) {
   for (int i = 0; i < 4; ++i) {
     const MirrorRun p = mirror_mapping(ContractionRobot{}, {10, 10}, fn[i], wp, MirrorMode::point);
     const MirrorRun f = mirror_mapping(ContractionRobot{}, {10, 10}, fn[i], wp, MirrorMode::fold);
-    std::printf("  %5d | %5ld %6.2f / %4ld %6.2f | %5d %6.2f\n", fn[i], p.reflections, 100.0 * p.coverage, f.reflections,
-                100.0 * f.coverage, fnf[i], fc[i]);
+    std::printf("  %5d | %5ld %6.2f / %4ld %6.2f | %5d %6.2f\n", fn[i], p.reflections, 100.0 * p.coverage,
+                f.reflections, 100.0 * f.coverage, fnf[i], fc[i]);
   }
   // The paper's panels look like runs stopped at nf = 20, 100, 500, 1500:
   // the first n at which our count reaches each (a prefix's count grows with n).

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/planners/chebyshev/chebyshev_run.hpp"
 #include "kernels/core/clutter.hpp"
-#include "kernels/planners/planner.hpp"
+#include "kernels/planners/chebyshev/chebyshev_run.hpp"
 #include "kernels/planners/chebyshev/rect_decomposition.hpp"
+#include "kernels/planners/planner.hpp"
 #include "tests/support/kernel_test_util.hpp"
 
 namespace chaosweep {
@@ -39,7 +39,8 @@ void expect_boxes(const std::vector<Rect>& got, const std::vector<Rect>& want) {
   ASSERT_EQ(g.size(), w.size());
   for (std::size_t i = 0; i < g.size(); ++i)
     EXPECT_TRUE(same(g[i], w[i])) << i << ": (" << g[i].x0 << ", " << g[i].y0 << ")-(" << g[i].x1 << ", " << g[i].y1
-                                  << ") vs (" << w[i].x0 << ", " << w[i].y0 << ")-(" << w[i].x1 << ", " << w[i].y1 << ")";
+                                  << ") vs (" << w[i].x0 << ", " << w[i].y0 << ")-(" << w[i].x1 << ", " << w[i].y1
+                                  << ")";
 }
 
 std::vector<Rect> region_boxes(const RectDecomposition& d) {
@@ -58,13 +59,14 @@ TEST(Decomposition, CaseOneGivesThePapersEightSmallFourCoverageAndFourTransition
   // Cut lines at the walls and the obstacle grown by r: 0.1, 2.4, 7.6, 9.9.
   ASSERT_EQ(d.small.size(), 8u);  // A-H around the obstacle
   // SI_ABC (top row), SI_EFG (bottom row), SI_D and SI_H (the two sides).
-  expect_boxes(region_boxes(d), {{0.1, 7.6, 9.9, 9.9}, {0.1, 0.1, 9.9, 2.4}, {7.6, 2.4, 9.9, 7.6}, {0.1, 2.4, 2.4, 7.6}});
+  expect_boxes(region_boxes(d),
+               {{0.1, 7.6, 9.9, 9.9}, {0.1, 0.1, 9.9, 2.4}, {7.6, 2.4, 9.9, 7.6}, {0.1, 2.4, 2.4, 7.6}});
   // ST_CD, ST_DE, ST_GH, ST_HA: a corner cell and the side cell next to it.
   expect_boxes(transition_boxes(d),
                {{7.6, 2.4, 9.9, 9.9}, {7.6, 0.1, 9.9, 7.6}, {0.1, 0.1, 2.4, 7.6}, {0.1, 2.4, 2.4, 9.9}});
   // The two side rectangles get about half the others' area (the paper's 1/2).
-  EXPECT_NEAR(d.regions[std::size_t(d.region_at(8, 5))].area() / d.regions[std::size_t(d.region_at(5, 9))].area(),
-              0.5, 0.05);
+  EXPECT_NEAR(d.regions[std::size_t(d.region_at(8, 5))].area() / d.regions[std::size_t(d.region_at(5, 9))].area(), 0.5,
+              0.05);
 }
 
 TEST(Decomposition, CaseTwoGivesThePapersSevenSmallAndThreeCoverageRectangles) {
@@ -129,7 +131,8 @@ TEST(Decomposition, LoopRouteVisitsEveryRectangleThroughTransitions) {
       for (std::size_t k = 0; k < route.size(); ++k) {
         seen[std::size_t(route[k])] = true;
         if (k > 0) {
-          EXPECT_GE(d.transition_between(route[k - 1], route[k]), 0) << "no transition " << route[k - 1] << "-" << route[k];
+          EXPECT_GE(d.transition_between(route[k - 1], route[k]), 0)
+              << "no transition " << route[k - 1] << "-" << route[k];
         }
       }
       EXPECT_EQ(seen, reachable);

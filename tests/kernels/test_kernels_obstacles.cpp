@@ -14,8 +14,8 @@
 #include "kernels/core/clutter.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
-#include "kernels/planners/planner.hpp"
 #include "kernels/math/splitmix.hpp"
+#include "kernels/planners/planner.hpp"
 #include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
@@ -118,7 +118,8 @@ Environment random_map(std::uint64_t seed, int n, double side) {
     double h = bar ? side * 0.02 : side * 0.03 * (0.2 + uniform01(s));
     if (k % 2) std::swap(w, h);
     double x = (side - w) * uniform01(s), y = (side - h) * uniform01(s);
-    if (on_grid) x = std::floor(x), y = std::floor(y), w = std::max(1.0, std::floor(w)), h = std::max(1.0, std::floor(h));
+    if (on_grid)
+      x = std::floor(x), y = std::floor(y), w = std::max(1.0, std::floor(w)), h = std::max(1.0, std::floor(h));
     env.obstacles.push_back({x, y, std::min(side, x + w), std::min(side, y + h)});
   }
   return env;
@@ -136,7 +137,8 @@ TEST(ObstacleGeometry, UnionAreaEqualsTheCellByCellArea) {
   // Disjoint squares: the sum of their areas; one square inside another: the outer one.
   Environment grid = test::square_map(100);
   for (int i = 0; i < 95; ++i)
-    for (int j = 0; j < 95; ++j) grid.obstacles.push_back({i * 1.05 + 0.2, j * 1.05 + 0.2, i * 1.05 + 0.7, j * 1.05 + 0.7});
+    for (int j = 0; j < 95; ++j)
+      grid.obstacles.push_back({i * 1.05 + 0.2, j * 1.05 + 0.2, i * 1.05 + 0.7, j * 1.05 + 0.7});
   EXPECT_NEAR(grid.obstacle_area(), 95 * 95 * 0.25, 1e-8);
   EXPECT_DOUBLE_EQ(test::square_map(10, {{1, 1, 5, 5}, {2, 2, 3, 3}}).obstacle_area(), 16.0);
   EXPECT_EQ(test::square_map(10).obstacle_area(), 0.0);
@@ -203,7 +205,8 @@ TEST(ObstacleGeometry, ARunOnAnIndexedMapEqualsTheRunOnTheSameMapScanned) {
     p.max_time = 3000;
     const RunResult a = run_planner(p, indexed), b = run_planner(p, scanned);
     EXPECT_EQ(a.status, b.status);
-    EXPECT_TRUE(same_bits(a.coverage_time, b.coverage_time) || (std::isnan(a.coverage_time) && std::isnan(b.coverage_time)));
+    EXPECT_TRUE(same_bits(a.coverage_time, b.coverage_time) ||
+                (std::isnan(a.coverage_time) && std::isnan(b.coverage_time)));
     EXPECT_EQ(a.steps, b.steps);
     EXPECT_EQ(a.free_cells, b.free_cells);
     EXPECT_EQ(a.visited_cells, b.visited_cells);
@@ -226,8 +229,7 @@ TEST(ObstacleGeometry, TheClutterGeneratorsBucketsChangeNoMap) {
       const std::vector<Rect> b = clutter_by_scan(c.side, c.side, spec, 0.5, 0.5);
       ASSERT_EQ(a.size(), b.size()) << c.side << " seed " << seed;
       for (std::size_t k = 0; k < a.size(); ++k)
-        ASSERT_TRUE(same_bits(a[k].x0, b[k].x0) && same_bits(a[k].y0, b[k].y0) && same_bits(a[k].x1, b[k].x1))
-            << k;
+        ASSERT_TRUE(same_bits(a[k].x0, b[k].x0) && same_bits(a[k].y0, b[k].y0) && same_bits(a[k].x1, b[k].x1)) << k;
       EXPECT_LE(a.size(), std::size_t(max_clutter_attempts));
     }
   }

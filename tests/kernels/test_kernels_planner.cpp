@@ -6,13 +6,13 @@
 #include <memory>
 #include <set>
 
-#include "kernels/planners/arnold/control.hpp"
 #include "kernels/core/coverage_grid.hpp"
-#include "kernels/planners/planner.hpp"
+#include "kernels/planners/arnold/control.hpp"
 #include "kernels/planners/arnold/planner_run.hpp"
-#include "tests/support/kernel_test_util.hpp"
 #include "kernels/planners/arnold/transit.hpp"
 #include "kernels/planners/arnold/zones.hpp"
+#include "kernels/planners/planner.hpp"
+#include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
 using chaosweep::test::small_run;
@@ -366,8 +366,8 @@ TEST(LogisticPlanner, AFixedPointEndsTheRunAsDiverged) {
 // A run never ends a step inside an obstacle or outside the map, for every
 // technique set and obstacle response, on the Table 1 layouts (scaled to 50 m).
 TEST(Planner, RobotNeverEndsAStepInsideAnObstacleOrOutsideTheMap) {
-  const std::vector<Rect> five = {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44},
-                                  {23.5, 23.5, 26.5, 26.5}};
+  const std::vector<Rect> five = {
+      {6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}};
   const std::vector<Rect> one = {{15, 15, 35, 35}};
   for (const auto& obstacles : {five, one})
     for (int variant = 0; variant < 7; ++variant) {

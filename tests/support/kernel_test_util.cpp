@@ -12,8 +12,7 @@ namespace fs = std::filesystem;
 
 TempDir::TempDir() {
   static std::atomic<int> counter{0};
-  path_ = fs::temp_directory_path() /
-          ("chaosweep_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  path_ = fs::temp_directory_path() / ("chaosweep_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
   fs::remove_all(path_);
   fs::create_directories(path_);
 }
@@ -23,9 +22,7 @@ TempDir::~TempDir() {
   fs::remove_all(path_, ec);
 }
 
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
+void write_file(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path);

@@ -7,7 +7,9 @@ namespace chaosweep {
 void add_sweep_flags(CLI::App& cmd, SweepFlags& o) {
   cmd.add_option("spec", o.spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
   cmd.add_option("-o,--output", o.out, "result file (HDF5)")->required();
-  cmd.add_option("--threads", o.threads, "worker threads (0: all cores)")->check(CLI::Number)->check(CLI::Range(0, 4096));
+  cmd.add_option("--threads", o.threads, "worker threads (0: all cores)")
+      ->check(CLI::Number)
+      ->check(CLI::Range(0, 4096));
   cmd.add_option("--shard", o.shard,
                  "run only shard K of N (run_ids i with i % N == K); default: from SLURM_ARRAY_TASK_ID "
                  "and SLURM_ARRAY_TASK_COUNT when set")
@@ -17,7 +19,9 @@ void add_sweep_flags(CLI::App& cmd, SweepFlags& o) {
                "complete)");
   cmd.add_flag("--force", o.force,
                "run even though OUT (replaced when this sweep completes) or OUT.partial (started over) exists");
-  cmd.add_option("--batch", o.batch, "runs per write to OUT.partial")->check(CLI::Number)->check(CLI::Range(1, 1 << 24));
+  cmd.add_option("--batch", o.batch, "runs per write to OUT.partial")
+      ->check(CLI::Number)
+      ->check(CLI::Range(1, 1 << 24));
   cmd.add_option("--flush-seconds", o.flush_seconds,
                  "also write the finished runs to OUT.partial once this many seconds passed since the last write "
                  "(0: only every --batch runs)")

@@ -27,7 +27,8 @@ std::vector<Attribute> sweep_provenance(const SweepSpec& spec, const SweepInputs
          {"start_time", utc_now()}};
   } else {
     a = {{"resumed_at", utc_now()}};
-    if (has_attribute(resumed, "simd_target")) targets = join_name_lists(read_attribute(resumed, "simd_target"), target);
+    if (has_attribute(resumed, "simd_target"))
+      targets = join_name_lists(read_attribute(resumed, "simd_target"), target);
   }
   a.push_back({"host", host_name()});
   a.push_back({"threads", std::int64_t(threads)});

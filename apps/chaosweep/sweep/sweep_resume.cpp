@@ -29,8 +29,7 @@ std::int64_t runs_to_skip(const std::string& partial, const SweepInputs& inputs,
 
 }  // namespace
 
-SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs,
-                              Shard shard) {
+SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs, Shard shard) {
   namespace fs = std::filesystem;
   const std::string partial = out + ".partial";
   SweepStart start;
@@ -44,7 +43,8 @@ SweepStart start_sweep_output(const std::string& out, bool resume, bool force, c
     return start;
   }
   if (!resume && !force && fs::exists(partial))
-    throw std::runtime_error(partial + " exists (an interrupted sweep): pass --resume to continue it, "
+    throw std::runtime_error(partial +
+                             " exists (an interrupted sweep): pass --resume to continue it, "
                              "or --force to start over");
   if (start.resuming) start.skip = runs_to_skip(partial, inputs, shard);
   return start;

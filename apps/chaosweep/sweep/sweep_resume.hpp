@@ -21,7 +21,6 @@ struct SweepStart {
 // Checks `out` (and `out`.partial) against --resume/--force, locks it, and
 // for a resume checks that the partial file holds this spec's inputs and
 // this shard's first runs. Throws std::runtime_error (bad input) otherwise.
-SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs,
-                              Shard shard);
+SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs, Shard shard);
 
 }  // namespace chaosweep

@@ -38,13 +38,15 @@ Shard slurm_shard() {
     throw SpecError(std::string(id ? "SLURM_ARRAY_TASK_ID" : "SLURM_ARRAY_TASK_COUNT") + " is set but " +
                     (id ? "SLURM_ARRAY_TASK_COUNT" : "SLURM_ARRAY_TASK_ID") +
                     " is not: cannot tell this task's shard (pass --shard K/N)");
-  const std::string vars = "SLURM_ARRAY_TASK_ID = " + std::to_string(*id) + ", SLURM_ARRAY_TASK_MIN = " +
-                           std::to_string(min.value_or(0)) + ", SLURM_ARRAY_TASK_STEP = " +
-                           std::to_string(step.value_or(1)) + ", SLURM_ARRAY_TASK_COUNT = " + std::to_string(*count);
+  const std::string vars = "SLURM_ARRAY_TASK_ID = " + std::to_string(*id) +
+                           ", SLURM_ARRAY_TASK_MIN = " + std::to_string(min.value_or(0)) +
+                           ", SLURM_ARRAY_TASK_STEP = " + std::to_string(step.value_or(1)) +
+                           ", SLURM_ARRAY_TASK_COUNT = " + std::to_string(*count);
   const int offset = *id - min.value_or(0), stride = step.value_or(1);
   if (stride < 1 || offset < 0 || offset % stride != 0 || *count < 1 || offset / stride >= *count)
-    throw SpecError(vars + ": not a task of the array (need MIN <= ID, (ID - MIN) / STEP a whole number below "
-                           "COUNT); pass --shard K/N");
+    throw SpecError(vars +
+                    ": not a task of the array (need MIN <= ID, (ID - MIN) / STEP a whole number below "
+                    "COUNT); pass --shard K/N");
   s.index = offset / stride;
   s.count = *count;
   return s;

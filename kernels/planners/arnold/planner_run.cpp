@@ -4,17 +4,15 @@
 #include <cstdint>
 
 #include "kernels/core/chaotic_spread.hpp"
-#include "kernels/planners/arnold/control.hpp"
 #include "kernels/core/metrics.hpp"
 #include "kernels/math/splitmix.hpp"
+#include "kernels/planners/arnold/control.hpp"
 
 namespace chaosweep {
 
 namespace {
 
-bool finite(const Vec3<double>& u) {
-  return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z);
-}
+bool finite(const Vec3<double>& u) { return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z); }
 
 int auto_th(const RunParams& p, const Environment& env) {
   if (p.th > 0) return p.th;
@@ -39,14 +37,24 @@ LogisticMap initial_logistic(const RunParams& p) {
   return {x0, p.logistic_r};
 }
 
-PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
-                       TraceSink* trace)
-    : p_(p), env_(env), grid_(grid), r_(r), trace_(trace),
+PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r, TraceSink* trace)
+    : p_(p),
+      env_(env),
+      grid_(grid),
+      r_(r),
+      trace_(trace),
       needed_(cells_needed(p, grid)),
       budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
-      k_{p.A, p.B, p.C}, u_(initial_state(p)), trig_(trig3(u_)), ds_(p.ds_index), h_(p.dt),
-      last_visited_(0), th_(auto_th(p, env)), robot_(p, env, grid),
-      logistic_(initial_logistic(p)), zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
+      k_{p.A, p.B, p.C},
+      u_(initial_state(p)),
+      trig_(trig3(u_)),
+      ds_(p.ds_index),
+      h_(p.dt),
+      last_visited_(0),
+      th_(auto_th(p, env)),
+      robot_(p, env, grid),
+      logistic_(initial_logistic(p)),
+      zones_(env, grid, p.zones_x, p.zones_y, p.zone_goal == ZoneGoal::free_cell, p.fo) {
   last_visited_ = grid_.visited_cells();
   if (trace_) trace_->point({0.0, robot_.x(), robot_.y(), SegmentKind::start, ds_});
 }
@@ -57,8 +65,6 @@ void PlannerRun::end(Status s, const char* why) {
   if (why) r_.message = why;
   if (s == Status::ok) r_.coverage_time = t_;
 }
-
-
 
 void PlannerRun::start() {
   // The start cell alone may already satisfy a tiny dc.

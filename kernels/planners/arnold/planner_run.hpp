@@ -6,23 +6,22 @@
 #include <cmath>
 #include <vector>
 
-#include "kernels/systems/arnold_flow.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
-#include "kernels/systems/logistic_map.hpp"
 #include "kernels/core/robot_motion.hpp"
 #include "kernels/core/run_params.hpp"
 #include "kernels/core/trace.hpp"
 #include "kernels/planners/arnold/transit.hpp"
 #include "kernels/planners/arnold/zones.hpp"
+#include "kernels/systems/arnold_flow.hpp"
+#include "kernels/systems/logistic_map.hpp"
 
 namespace chaosweep {
 
 class PlannerRun {
  public:
   // Expects validated parameters and r.t_opt, r.free_cells set.
-  PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r,
-             TraceSink* trace);
+  PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r, TraceSink* trace);
   void run();
 
   // Step-driven use, for steps computed elsewhere (the lane integrators;

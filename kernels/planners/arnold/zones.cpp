@@ -56,11 +56,8 @@ std::vector<ZoneInfo> Zones::snapshot(const CoverageGrid& grid) const {
   return z;
 }
 
-std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, double x, double y,
-                                 bool distance_first) {
-  std::erase_if(zones, [&](const ZoneInfo& z) {
-    return z.free_cells == 0 || !z.has_goal || z.index == robot_zone;
-  });
+std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, double x, double y, bool distance_first) {
+  std::erase_if(zones, [&](const ZoneInfo& z) { return z.free_cells == 0 || !z.has_goal || z.index == robot_zone; });
   auto key = [&](const ZoneInfo& z) {
     const double d = std::hypot(z.goal_x - x, z.goal_y - y);
     return distance_first ? std::tuple{d, z.density(), z.index} : std::tuple{z.density(), d, z.index};

@@ -42,8 +42,7 @@ class Zones {
 // cell and a goal, except the robot's. Lowest density first, ties by distance
 // to the goal; or (distance_first) nearest goal first, ties by lowest density.
 // Remaining ties by zone index.
-std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, double x, double y,
-                                 bool distance_first);
+std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, double x, double y, bool distance_first);
 
 // Whether a run ranks zones distance first: zone_order = auto does on maps
 // with obstacles only (Section 3.2), density and distance always the one way.

@@ -58,8 +58,8 @@ std::optional<Contact> drive_to_contact(const CellGrid& grid, double x, double y
 std::vector<std::pair<int, double>> rotation_offsets(int bins, double phi_deg, double eps_deg, double r);
 
 struct GcmOptions {
-  double step = 0.0;   // forward step per GCM step, metres; 0 = one cell side
-  int samples = 2;     // sample points per axis per position cell (samples^2 in all)
+  double step = 0.0;  // forward step per GCM step, metres; 0 = one cell side
+  int samples = 2;    // sample points per axis per position cell (samples^2 in all)
 };
 
 // One policy's cell-to-cell map in CSR form: row z lists (to, probability,
@@ -72,7 +72,6 @@ struct CellMap {
   std::vector<std::uint8_t> bump;  // 1: the transition is a bump + rotation
 };
 
-CellMap build_cell_map(const CellGrid& grid, double phi_deg, double eps_deg, double r,
-                       const GcmOptions& opts = {});
+CellMap build_cell_map(const CellGrid& grid, double phi_deg, double eps_deg, double r, const GcmOptions& opts = {});
 
 }  // namespace chaosweep::bouncing_paper

@@ -31,13 +31,13 @@ SparseMatrix transition_matrix(const CellMap& m);
 Digraph support_graph(const SparseMatrix& P);
 
 struct Limit {
-  Eigen::VectorXd pi;               // per state, sums to 1, zero on transients
-  std::vector<int> group;           // per state: persistent group or -1 (transient)
+  Eigen::VectorXd pi;      // per state, sums to 1, zero on transients
+  std::vector<int> group;  // per state: persistent group or -1 (transient)
   int groups = 0;
-  std::vector<double> group_mass;   // m_g: probability of ending in group g
+  std::vector<double> group_mass;  // m_g: probability of ending in group g
 };
 
-Limit limiting_distribution(const SparseMatrix& P);                           // p(0) uniform
+Limit limiting_distribution(const SparseMatrix& P);  // p(0) uniform
 Limit limiting_distribution(const SparseMatrix& P, const Eigen::VectorXd& p0);
 
 // pi over configurations -> pi over free position cells (sum over bins).

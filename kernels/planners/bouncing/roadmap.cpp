@@ -77,8 +77,7 @@ std::optional<Plan> plan_to(const Roadmap& rm, const ShortestTree& tree, int goa
   int best = -1;
   for (int i = 0; i < rm.policies; ++i) {
     const int v = goal_config * rm.policies + i;
-    if (best < 0 ? tree.dist[v] < std::numeric_limits<double>::infinity() : tree.dist[v] < tree.dist[best])
-      best = v;
+    if (best < 0 ? tree.dist[v] < std::numeric_limits<double>::infinity() : tree.dist[v] < tree.dist[best]) best = v;
   }
   if (best < 0) return std::nullopt;
   Plan p;

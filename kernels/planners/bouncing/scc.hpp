@@ -15,7 +15,7 @@ struct Digraph {
 };
 
 struct Scc {
-  std::vector<int> component;       // node -> component id
+  std::vector<int> component;  // node -> component id
   int count = 0;
   // Component ids follow Tarjan's completion order: a component's successors
   // get smaller ids (sinks first, reverse topological order).

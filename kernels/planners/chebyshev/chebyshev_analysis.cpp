@@ -49,8 +49,9 @@ double mean_log_derivative(const char* who, int k, double x0, long n, long burn_
   const long total = burn_in + n;
   for (long i = 0; i < total; ++i) {
     if (std::abs(x) == 1.0)
-      throw std::domain_error(std::string(who) + ": the orbit hit x = " + num(x) + " at step " + std::to_string(i) +
-                              ", where f' is 0/0 and x = 1 is a fixed point (floating point); try another initial value");
+      throw std::domain_error(
+          std::string(who) + ": the orbit hit x = " + num(x) + " at step " + std::to_string(i) +
+          ", where f' is 0/0 and x = 1 is a fixed point (floating point); try another initial value");
     if (i >= burn_in) {
       const double l = log_abs_deriv(x);
       if (!std::isfinite(l))

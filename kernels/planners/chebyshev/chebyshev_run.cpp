@@ -5,9 +5,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "kernels/systems/chebyshev_map.hpp"
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
+#include "kernels/systems/chebyshev_map.hpp"
 
 namespace chaosweep {
 
@@ -22,10 +22,17 @@ bool contains(const Rect& b, double x, double y) { return x >= b.x0 && x <= b.x1
 class ChebyshevRun {
  public:
   ChebyshevRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r, TraceSink* trace)
-      : p_(p), grid_(grid), r_(r), trace_(trace), d_(decompose_free_space(env, p.radius)),
+      : p_(p),
+        grid_(grid),
+        r_(r),
+        trace_(trace),
+        d_(decompose_free_space(env, p.radius)),
         needed_(cells_needed(p, grid)),
-        budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt), x_(p.cheb_x0), y_(p.cheb_y0),
-        px_(p.start_x), py_(p.start_y) {
+        budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
+        x_(p.cheb_x0),
+        y_(p.cheb_y0),
+        px_(p.start_x),
+        py_(p.start_y) {
     grid_.mark_point(px_, py_);
     if (trace_) trace_->point({0.0, px_, py_, SegmentKind::start, 0});
     // Each rectangle's share of a loop's sub-goals, by area (at least one).
@@ -46,7 +53,8 @@ class ChebyshevRun {
         // A rectangle's share is spent on its first visit in the loop;
         // later visits only pass through.
         if (!done[std::size_t(reg)]) {
-          for (long n = 0; n < share_[std::size_t(reg)] && !ended_; ++n) subgoal_in(d_.regions[std::size_t(reg)].box, SegmentKind::chebyshev);
+          for (long n = 0; n < share_[std::size_t(reg)] && !ended_; ++n)
+            subgoal_in(d_.regions[std::size_t(reg)].box, SegmentKind::chebyshev);
           done[std::size_t(reg)] = true;
         }
         if (k + 1 == route.size() || ended_) break;
@@ -125,10 +133,12 @@ class ChebyshevRun {
       ++r_.steps;
       const bool last = m == moves;
       if (last) ++r_.subgoals;
-      if (trace_) trace_->point({t_, px_, py_, last && kind == SegmentKind::chebyshev ? SegmentKind::subgoal : kind, 0});
+      if (trace_)
+        trace_->point({t_, px_, py_, last && kind == SegmentKind::chebyshev ? SegmentKind::subgoal : kind, 0});
       if (covered()) return end(Status::ok);
       if (t_ >= budget_) return end(Status::timeout, "budget reached before dc");
-      if (last && p_.max_subgoals > 0 && r_.subgoals >= p_.max_subgoals) return end(Status::timeout, "max_subgoals reached before dc");
+      if (last && p_.max_subgoals > 0 && r_.subgoals >= p_.max_subgoals)
+        return end(Status::timeout, "max_subgoals reached before dc");
     }
   }
 

@@ -8,9 +8,9 @@
 // robot leaves through a transition rectangle to the next one.
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
-#include "kernels/planners/chebyshev/rect_decomposition.hpp"
 #include "kernels/core/run_params.hpp"
 #include "kernels/core/trace.hpp"
+#include "kernels/planners/chebyshev/rect_decomposition.hpp"
 
 namespace chaosweep {
 

@@ -181,8 +181,8 @@ void merge_into_regions(const CutGrid& g, RectDecomposition& d) {
   std::size_t remaining = d.small.size();
   while (remaining > 0) {
     const Cand best = next_coverage_rectangle(d, g, left);
-    RectDecomposition::Region reg{{d.xs[std::size_t(best.i0)], d.ys[std::size_t(best.j0)], d.xs[std::size_t(best.i1 + 1)],
-                                   d.ys[std::size_t(best.j1 + 1)]},
+    RectDecomposition::Region reg{{d.xs[std::size_t(best.i0)], d.ys[std::size_t(best.j0)],
+                                   d.xs[std::size_t(best.i1 + 1)], d.ys[std::size_t(best.j1 + 1)]},
                                   {}};
     for (int j = best.j0; j <= best.j1; ++j)
       for (int i = best.i0; i <= best.i1; ++i) {
@@ -198,8 +198,8 @@ void merge_into_regions(const CutGrid& g, RectDecomposition& d) {
 
 // Two small rectangles of different regions facing each other across a cut line.
 struct Pair {
-  int a, b;     // regions (a < b)
-  int s, t;     // the two small rectangles
+  int a, b;  // regions (a < b)
+  int s, t;  // the two small rectangles
   bool vertical_line;
   double line;  // the cut coordinate
   Rect box;
@@ -218,7 +218,12 @@ std::vector<Pair> facing_pairs(const CutGrid& g, const RectDecomposition& d) {
         const int t = g.at(i + 1, j);
         if (t >= 0 && d.small[std::size_t(t)].region != rs) {
           const int rt = d.small[std::size_t(t)].region;
-          pairs.push_back({std::min(rs, rt), std::max(rs, rt), s, t, true, bs.x1,
+          pairs.push_back({std::min(rs, rt),
+                           std::max(rs, rt),
+                           s,
+                           t,
+                           true,
+                           bs.x1,
                            {bs.x0, bs.y0, d.small[std::size_t(t)].box.x1, bs.y1}});
         }
       }
@@ -226,7 +231,12 @@ std::vector<Pair> facing_pairs(const CutGrid& g, const RectDecomposition& d) {
         const int t = g.at(i, j + 1);
         if (t >= 0 && d.small[std::size_t(t)].region != rs) {
           const int rt = d.small[std::size_t(t)].region;
-          pairs.push_back({std::min(rs, rt), std::max(rs, rt), s, t, false, bs.y1,
+          pairs.push_back({std::min(rs, rt),
+                           std::max(rs, rt),
+                           s,
+                           t,
+                           false,
+                           bs.y1,
                            {bs.x0, bs.y0, bs.x1, d.small[std::size_t(t)].box.y1}});
         }
       }
@@ -245,8 +255,9 @@ void link_transitions(const CutGrid& g, RectDecomposition& d) {
       if (tr.a != p.a || tr.b != p.b) continue;
       // Same line, adjacent along it, same extent across it: still a rectangle.
       const Rect& q = tr.box;
-      const bool joins = p.vertical_line ? (q.x0 == p.box.x0 && q.x1 == p.box.x1 && (q.y1 == p.box.y0 || q.y0 == p.box.y1))
-                                         : (q.y0 == p.box.y0 && q.y1 == p.box.y1 && (q.x1 == p.box.x0 || q.x0 == p.box.x1));
+      const bool joins = p.vertical_line
+                             ? (q.x0 == p.box.x0 && q.x1 == p.box.x1 && (q.y1 == p.box.y0 || q.y0 == p.box.y1))
+                             : (q.y0 == p.box.y0 && q.y1 == p.box.y1 && (q.x1 == p.box.x0 || q.x0 == p.box.x1));
       if (!joins) continue;
       tr.box = {std::min(q.x0, p.box.x0), std::min(q.y0, p.box.y0), std::max(q.x1, p.box.x1), std::max(q.y1, p.box.y1)};
       tr.small.push_back(p.s), tr.small.push_back(p.t);

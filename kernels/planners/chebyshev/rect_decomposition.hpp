@@ -16,8 +16,8 @@ namespace chaosweep {
 struct RectDecomposition {
   struct Small {
     Rect box;
-    int i, j;     // column and row in the grid of cut lines
-    int region;   // the SI_x it was merged into
+    int i, j;    // column and row in the grid of cut lines
+    int region;  // the SI_x it was merged into
   };
   struct Region {  // SI_x: a rectangle made of small rectangles
     Rect box;

@@ -5,9 +5,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "kernels/systems/arnold_flow.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
+#include "kernels/systems/arnold_flow.hpp"
 
 // Seed 003 has its own Sampling, Heading, ... : a namespace keeps them apart
 // from the common model's (run_params.hpp).
@@ -158,7 +158,8 @@ std::vector<Point> contract_to(const std::vector<Point>& path, Point target, con
   return out;
 }
 
-CandidateSweep candidate_sweep(const ContractionRobot& robot, Point start, const Workplace& wp, const CandidateParams& p) {
+CandidateSweep candidate_sweep(const ContractionRobot& robot, Point start, const Workplace& wp,
+                               const CandidateParams& p) {
   if (p.n_min < 1 || p.n_step < 1 || p.n_max < p.n_min)
     throw std::invalid_argument("candidate_sweep: need 1 <= n_min <= n_max and n_step >= 1");
   // One trajectory to n_max: each sample is a prefix (the robot is the same).

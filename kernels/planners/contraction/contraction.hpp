@@ -163,9 +163,8 @@ struct CompleteCoverage {
   double coverage = 0.0;
   bool reached = false;
 };
-CompleteCoverage complete_coverage(const ContractionRobot& robot, const std::vector<Candidate>& candidates,
-                                   Point start, const Workplace& wp, double target = 0.90,
-                                   int max_sections = 100);
+CompleteCoverage complete_coverage(const ContractionRobot& robot, const std::vector<Candidate>& candidates, Point start,
+                                   const Workplace& wp, double target = 0.90, int max_sections = 100);
 
 // The comparison of Figs. 15-16: the robot from `start` (inside the
 // workplace) kept in by mirror mapping at the walls for n steps. `path` holds

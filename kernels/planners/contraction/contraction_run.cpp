@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "kernels/planners/contraction/contraction.hpp"
+#include "kernels/core/chaotic_spread.hpp"
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
-#include "kernels/core/chaotic_spread.hpp"
+#include "kernels/planners/contraction/contraction.hpp"
 
 namespace chaosweep {
 
@@ -38,7 +38,8 @@ void run_contraction(const RunParams& p, const Environment& env, CoverageGrid& g
   const ContractionRobot robot = robot_of(p);
   Workplace wp;
   wp.w = env.lx, wp.h = env.ly, wp.cell = p.sr;
-  wp.sampling = p.sampling == chaosweep::Sampling::points ? contraction_paper::Sampling::points : contraction_paper::Sampling::segments;
+  wp.sampling = p.sampling == chaosweep::Sampling::points ? contraction_paper::Sampling::points
+                                                          : contraction_paper::Sampling::segments;
   const Point start{p.start_x, p.start_y};
   std::vector<Point> path;
   switch (p.c3_mode) {

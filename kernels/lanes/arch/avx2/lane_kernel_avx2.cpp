@@ -1,7 +1,10 @@
 // Width 4 (AVX2 + FMA), two vectors per pass; this file alone is compiled with -march=x86-64-v3.
 // It must call nothing inline that baseline code also instantiates: only the
 // vector-typed templates live here (see tests/check_simd_symbols.sh).
+// The vector lane types' overloads must be declared before the integrator
+// template that calls them (its own block, so that include sorting keeps it first).
 #include "kernels/math/simd_lane_math.hpp"
+
 #include "kernels/lanes/lane_integrator.hpp"
 
 namespace chaosweep {
