@@ -13,6 +13,7 @@
 
 #include "tests/support/test_util.hpp"
 
+using chaosweep::test::has;
 using chaosweep::test::run_chaosweep;
 using chaosweep::test::TempDir;
 using chaosweep::test::write_file;
@@ -20,8 +21,6 @@ using chaosweep::test::write_file;
 namespace {
 
 namespace fs = std::filesystem;
-
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // No output and no partial output of `out`.
 void expect_nothing_written(const std::string& out) {

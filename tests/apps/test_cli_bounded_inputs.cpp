@@ -15,6 +15,7 @@
 #include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
 
+using chaosweep::test::has;
 using chaosweep::test::run_chaosweep;
 using chaosweep::test::TempDir;
 using chaosweep::test::write_file;
@@ -22,8 +23,6 @@ using chaosweep::test::write_file;
 namespace {
 
 namespace fs = std::filesystem;
-
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 const char* tiny_sweep = "[fixed]\nsize = 10\nsr = 2\nmax_time = 5\n[axes]\nA = [0.4, 0.5]\n";
 

@@ -24,7 +24,7 @@ namespace {
 
 const std::string source_dir = CHAOSWEEP_SOURCE_DIR;
 
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using chaosweep::test::has;
 
 void write_rows(const std::string& path, const std::vector<RunRow>& rows) {
   H5RunWriter w(path);

@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using chaosweep::test::has;
 
 // Polls `cond` every 5 ms for up to `seconds`; false on timeout.
 bool wait_until(const std::function<bool()>& cond, double seconds = 60) {

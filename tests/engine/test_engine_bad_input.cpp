@@ -19,12 +19,11 @@
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
+using chaosweep::test::has;
 using chaosweep::test::TempDir;
 using chaosweep::test::write_file;
 
 namespace {
-
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // The error parse_sweep_spec gives for `text` (named spec.toml), or "" when it parses.
 std::string spec_error(const std::string& text) {

@@ -15,12 +15,11 @@
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
+using chaosweep::test::has;
 using chaosweep::test::TempDir;
 using chaosweep::test::write_file;
 
 namespace {
-
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // The error loading the spec at `path` gives, or "" when it loads.
 std::string load_error(const std::string& path) {

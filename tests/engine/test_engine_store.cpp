@@ -25,7 +25,7 @@ using chaosweep::test::TempDir;
 
 namespace {
 
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using chaosweep::test::has;
 
 // n hand-made rows from run_id `first`, with the given text.
 std::vector<RunRow> rows_of(std::int64_t first, std::size_t n, const std::string& env = "empty",

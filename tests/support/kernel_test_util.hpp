@@ -32,6 +32,9 @@ class TempDir {
 void write_file(const std::string& path, const std::string& text);
 std::string read_file(const std::string& path);
 
+// Whether `text` holds `part` (messages, outputs).
+inline bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
 // A small, fast, valid Arnold run: a `side` m map with 1 m cells.
 RunParams small_run(double side = 10.0);
 
