@@ -189,9 +189,9 @@ TEST(H5Store, ProvenanceAttributesKeepTheirKind) {
 }
 
 TEST(H5Store, FilesOfLayoutOneStayReadableButAreNotResumed) {
-  // tests/golden/layout1.h5: 6 runs written by chaosweep before layout 2
+  // tests/data/layout1.h5: 6 runs written by chaosweep before layout 2
   // (every text fixed-length, every attribute text).
-  const std::string old = CHAOSWEEP_SOURCE_DIR "/tests/golden/layout1.h5";
+  const std::string old = CHAOSWEEP_SOURCE_DIR "/tests/data/layout1.h5";
   EXPECT_EQ(layout_version(old), 1);
   EXPECT_EQ(count_rows(old), 6);
   EXPECT_EQ(read_attribute(old, "runs_total"), "6");
