@@ -39,18 +39,7 @@ std::string cheap_sweep(int a_values, int b_values) {
          " }\nB = { start = 0.1, stop = 0.8, num = " + std::to_string(b_values) + " }\n";
 }
 
-const char* small_sweep = R"(
-[sweep]
-name = "cli-small"
-[fixed]
-size = 12
-sr = 2
-max_time = 2000
-[axes]
-A = [0.4, 0.5, 0.6]
-B = [0.2, 0.3]
-ds_index = [1, 2, 3]
-)";
+const std::string small_sweep = chaosweep::test::small_spec_18_runs("cli-small");
 
 }  // namespace
 

@@ -22,18 +22,7 @@ using chaosweep::test::TempDir;
 using chaosweep::test::write_file;
 namespace fs = std::filesystem;
 
-const char* spec_18_runs = R"(
-[sweep]
-name = "slurm-small"
-[fixed]
-size = 12
-sr = 2
-max_time = 2000
-[axes]
-A = [0.4, 0.5, 0.6]
-B = [0.2, 0.3]
-ds_index = [1, 2, 3]
-)";
+const std::string spec_18_runs = chaosweep::test::small_spec_18_runs("slurm-small");
 
 // Runs `script` with bash in `dir`, with `env` (NAME=VALUE ...) set; exit code.
 int run_script(const std::string& script, const std::string& env, const std::string& dir) {

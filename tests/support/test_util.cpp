@@ -66,4 +66,10 @@ void write_foreign_file(const std::string& path, const std::string& what) {
   H5Fclose(file);
 }
 
+std::string small_spec_18_runs(const std::string& name) {
+  return "\n[sweep]\nname = \"" + name +
+         "\"\n[fixed]\nsize = 12\nsr = 2\nmax_time = 2000\n[axes]\nA = [0.4, 0.5, 0.6]\nB = [0.2, 0.3]\nds_index = [1, "
+         "2, 3]\n";
+}
+
 }  // namespace chaosweep::test

@@ -28,4 +28,7 @@ int wait_exit(int pid, long* max_rss_kib = nullptr);
 // columns) or "not-compound" (/runs of plain integers).
 void write_foreign_file(const std::string& path, const std::string& what);
 
+// A spec of 18 cheap runs (3 A x 2 B x 3 DSindex on a 12 m map) named `name`.
+std::string small_spec_18_runs(const std::string& name);
+
 }  // namespace chaosweep::test
