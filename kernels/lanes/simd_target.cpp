@@ -31,10 +31,16 @@ bool cpu_supports(SimdTarget t) {
   switch (t) {
     case SimdTarget::scalar:
       return true;
+    // The kernels are built for x86-64-v3 / -v4; those level names are GCC's
+    // only (clang 14 has no such feature name), so the levels are asked as the
+    // features that define them beyond what every such CPU has.
     case SimdTarget::avx2:
-      return __builtin_cpu_supports("x86-64-v3");
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi") &&
+             __builtin_cpu_supports("bmi2");
     case SimdTarget::avx512:
-      return __builtin_cpu_supports("x86-64-v4");
+      return cpu_supports(SimdTarget::avx2) && __builtin_cpu_supports("avx512f") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512cd") &&
+             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
   }
   return false;
 }
