@@ -5,8 +5,8 @@ ic-jittered samples of experiments/table1_spread.toml.
 
     python3 analysis/table1_compare.py out/table1/paper_params.h5 out/table1/spread.h5
 
-Reads the HDF5 result store with h5py (Debian: python3-h5py). A stopgap until
-`chaosweep table` (issue 7) does this in the engine.
+Reads the result files with the repository's Python package (python/chaosweep:
+Debian's python3-h5py and python3-pandas).
 """
 import csv
 import math
@@ -14,8 +14,10 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+from chaosweep import read_runs  # noqa: E402
 
 ENV_OBSTACLES = {"no_obstacles": 0, "one_square": 1, "four_squares": 4, "five_squares": 5}
 VARIANT_SHORT = {
@@ -26,18 +28,14 @@ VARIANT_SHORT = {
 }
 
 
-def text(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
-
-
 def main(paper_params, spread):
     root = Path(__file__).resolve().parent.parent
     paper = {r["row"]: r for r in csv.DictReader(
         line for line in open(root / "experiments/table1_paper.csv") if not line.startswith("#"))}
-    same = {text(r["label"]): r for r in h5py.File(paper_params, "r")["runs"][:]}
+    same = {r["label"]: r for r in read_runs(paper_params).to_dict("records")}
     samples = defaultdict(list)
-    for r in h5py.File(spread, "r")["runs"][:]:
-        samples[text(r["label"])].append(r)
+    for r in read_runs(spread).to_dict("records"):
+        samples[r["label"]].append(r)
 
     print("| row | technique | map | SR | obst. | c | DSindex | f | paper CT | our CT | "
           "our median CT [q1, q3] | ok | median / paper | paper PR | our median PR |")
@@ -46,7 +44,7 @@ def main(paper_params, spread):
     for row in sorted(same, key=int):
         r = same[row]
         s = samples.get(row, [])
-        ok = [x["coverage_time"] for x in s if text(x["status"]) == "ok"]
+        ok = [x["coverage_time"] for x in s if x["status"] == "ok"]
         med = float(np.median(ok)) if ok else math.nan
         q1, q3 = (np.percentile(ok, [25, 75]) if ok else (math.nan, math.nan))
         pct = float(paper[row]["paper_ct"])
@@ -56,9 +54,9 @@ def main(paper_params, spread):
         # the target counts as slower than any).
         below.append(100.0 * sum(1 for t in ok if t <= pct) / len(s) if s else math.nan)
         mz = int(r["map_zoning"]) == 1
-        logistic = text(r["planner"]) == "logistic"
-        print(f"| {row} | {VARIANT_SHORT.get(text(r['variant']), text(r['variant']))} "
-              f"| {r['size_x']:.0f} m | {r['sr']:.0f} | {ENV_OBSTACLES.get(text(r['env']), text(r['env']))} "
+        logistic = r["planner"] == "logistic"
+        print(f"| {row} | {VARIANT_SHORT.get(r['variant'], r['variant'])} "
+              f"| {r['size_x']:.0f} m | {r['sr']:.0f} | {ENV_OBSTACLES.get(r['env'], r['env'])} "
               f"| {r['c'] if mz else 'N/A'} | {'N/A' if logistic else int(r['ds_index'])} | {r['f']:g} "
               f"| {pct:.3g} | {r['coverage_time']:.3g} | {med:.3g} [{q1:.3g}, {q3:.3g}] "
               f"| {len(ok)}/{len(s)} | {med / pct:.2f} | {paper[row]['paper_pr']} "

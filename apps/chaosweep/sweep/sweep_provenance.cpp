@@ -1,6 +1,7 @@
 #include "apps/chaosweep/sweep/sweep_provenance.hpp"
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "engine/store/provenance.hpp"
 #include "engine/store/version.hpp"
@@ -20,7 +21,8 @@ std::vector<Attribute> sweep_provenance(const SweepSpec& spec, const SweepInputs
          {"spec_hash", inputs.spec_hash},
          {"inputs_hash", inputs.hash()},
          {"input_files", inputs.text()},
-         {"spec_path", spec_path},
+         // Absolute: a file read elsewhere (another directory, a notebook) still names its spec.
+         {"spec_path", std::filesystem::absolute(spec_path).lexically_normal().string()},
          {"spec_name", spec.name},
          {"runs_total", std::int64_t(spec.size())},
          {"shard", std::to_string(shard.index) + "/" + std::to_string(shard.count)},
