@@ -118,6 +118,20 @@ const CLI::Validator& not_nan() {
   return check;
 }
 
+void add_set_option(CLI::App& cmd, std::vector<std::string>& sets) {
+  cmd.add_option("--set", sets,
+                 "KEY=VALUE: change the spec's [fixed] setting or [axes] axis KEY (fixed.KEY, axes.KEY to say which; "
+                 "sweep.name), e.g. --set sr=4 --set 'A=[0.4, 0.5]'; repeatable; recorded in the stored spec")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+}
+
+std::vector<SpecOverride> spec_overrides(const std::vector<std::string>& sets) {
+  std::vector<SpecOverride> out;
+  for (const std::string& s : sets) out.push_back(parse_override(s));
+  return out;
+}
+
 void add_force_flag(CLI::App& cmd, bool& force) {
   cmd.add_flag("--force", force, "replace output files that already exist");
 }

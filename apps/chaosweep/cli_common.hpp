@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/spec/spec_overrides.hpp"
 #include "engine/spec/sweep_spec.hpp"
 #include "engine/store/provenance.hpp"
 #include "kernels/core/run_params.hpp"
@@ -38,6 +39,12 @@ struct OutputExists : OutputPathError {
 // A CLI11 check that a value is a number and not NaN (CLI::Range lets NaN
 // through: every comparison with it is false). Put it before the Range.
 const CLI::Validator& not_nan();
+
+// Adds --set KEY=VALUE (repeatable) to plan, sweep and slurm: a change of the
+// spec's [fixed] settings or [axes] (engine/spec/spec_overrides.hpp).
+void add_set_option(CLI::App& cmd, std::vector<std::string>& sets);
+// The parsed --set values; throws SpecError naming a malformed one.
+std::vector<SpecOverride> spec_overrides(const std::vector<std::string>& sets);
 
 // Adds --force to a command that writes files: results can be hours of work,
 // so no command replaces an existing file unless asked to.

@@ -75,16 +75,18 @@ double calibrate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget targ
 void add_plan_command(CLI::App& app, std::function<int()>& action) {
   auto* cmd = app.add_subcommand("plan", "Show what a sweep spec expands to and bound its work, without running it");
   auto spec_path = std::make_shared<std::string>();
+  auto sets = std::make_shared<std::vector<std::string>>();
   cmd->add_option("spec", *spec_path, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
-  cmd->callback([spec_path, &action] {
-    action = [spec_path]() -> int {
+  add_set_option(*cmd, *sets);
+  cmd->callback([spec_path, sets, &action] {
+    action = [spec_path, sets]() -> int {
       SweepSpec spec;
       EnvironmentCache cache;
       SimdTarget target;
       WorkBound work;
       try {
         target = selected_simd_target();
-        spec = load_sweep_spec(*spec_path);
+        spec = load_sweep_spec(*spec_path, spec_overrides(*sets));
         preload_environments(spec, cache);  // every map, named where the spec sets it, as sweep does
         work = bound_work(spec, cache);
       } catch (const std::exception& e) {
@@ -92,6 +94,11 @@ void add_plan_command(CLI::App& app, std::function<int()>& action) {
         return exit_bad_input;
       }
       std::cout << "sweep '" << spec.name << "'" << (spec.description.empty() ? "" : ": " + spec.description) << "\n";
+      if (!sets->empty()) {
+        std::cout << "--set      ";
+        for (const std::string& v : *sets) std::cout << " " << v;
+        std::cout << "  (applied to the spec's text, which the sweep stores)\n";
+      }
       if (spec.parts.empty()) {
         std::cout << "runs        " << spec.size() << shape_of(spec.axes, {}) << "\n";
         std::cout << "axes        (first varies slowest)\n";

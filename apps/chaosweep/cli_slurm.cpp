@@ -84,12 +84,14 @@ void require(const std::string& flag, const std::optional<std::string>& problem)
 
 struct SlurmOptions {
   std::string spec, dir, partition, time, mem, account, job_name;
+  std::vector<std::string> sets;  // --set KEY=VALUE, passed on to every task's sweep
   int tasks = 0, concurrency = 0, cpus = 1;
   bool submit = false, force = false;
 };
 
 void add_slurm_flags(CLI::App& cmd, SlurmOptions& o) {
   cmd.add_option("spec", o.spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
+  add_set_option(cmd, o.sets);
   cmd.add_option("--tasks", o.tasks, "array tasks = shards, at most the spec's runs")
       ->required()
       ->check(CLI::Range(1, 1000000));
@@ -116,7 +118,7 @@ struct SlurmJob {
 // Checks every value before anything is written: a bad value leaves no
 // script behind (throws BadSlurmValue or OutputExists).
 SlurmJob checked_job(const SlurmOptions& o) {
-  SlurmJob job{load_sweep_spec(o.spec), {}, o.job_name};
+  SlurmJob job{load_sweep_spec(o.spec, spec_overrides(o.sets)), {}, o.job_name};
   const SweepSpec& spec = job.spec;
   if (o.tasks > spec.size())
     throw BadSlurmValue("--tasks: " + std::to_string(o.tasks) + " is more than the spec's " +
@@ -150,6 +152,8 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
   const std::string array =
       "0-" + std::to_string(o.tasks - 1) + (o.concurrency > 0 ? "%" + std::to_string(o.concurrency) : "");
   const std::string spec_path = fs::absolute(o.spec).string();
+  std::string sets;  // each a quoted word: the value reaches the sweep as given
+  for (const std::string& s : o.sets) sets += " --set " + shell_quote(s);
   for (const char* name : {"sweep", "merge"}) {
     const auto tmpl = embedded_file(std::string("cluster/") + name + ".sbatch.in");
     if (!tmpl) throw std::runtime_error(std::string("no built-in template cluster/") + name + ".sbatch.in");
@@ -162,6 +166,7 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
                                                    {"DIR", shell_quote(dir.string())},
                                                    {"CHAOSWEEP", shell_quote(self_path())},
                                                    {"SPEC", shell_quote(spec_path)},
+                                                   {"SETS", sets},
                                                    {"TASKS", std::to_string(o.tasks)}});
     const fs::path out = dir / (std::string(name) + ".sbatch");
     write_checked(out, text);

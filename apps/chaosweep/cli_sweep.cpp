@@ -40,7 +40,7 @@ struct SweepInput {
 void load_input(const SweepFlags& o, SweepInput& in) {
   in.target = selected_simd_target();
   in.shard = parse_shard(o.shard);
-  in.spec = load_sweep_spec(o.spec);
+  in.spec = load_sweep_spec(o.spec, spec_overrides(o.sets));
   preload_environments(in.spec, in.cache);
 }
 

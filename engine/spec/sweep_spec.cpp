@@ -10,6 +10,7 @@
 
 #include "engine/rows/run_hash.hpp"
 #include "engine/spec/decimal_range.hpp"
+#include "engine/spec/spec_overrides.hpp"
 #include "kernels/core/param_table.hpp"
 #include "kernels/math/splitmix.hpp"
 
@@ -809,11 +810,20 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_na
   return parse_spec(text, source_name, dir, chain);
 }
 
-SweepSpec load_sweep_spec(const std::string& path) {
+SweepSpec load_sweep_spec(const std::string& path, const std::vector<SpecOverride>& overrides) {
   const auto slash = path.find_last_of('/');
   const std::string text = read_text(path, "the sweep spec");
   ExtendsChain chain{link_of(path)};
-  SweepSpec s = parse_spec(text, path, slash == std::string::npos ? "." : path.substr(0, slash), chain);
+  SweepSpec s;
+  try {
+    s = parse_spec(apply_overrides(text, overrides, path), path,
+                   slash == std::string::npos ? "." : path.substr(0, slash), chain);
+  } catch (const SpecError& e) {
+    if (overrides.empty() || std::string(e.what()).starts_with("--set ")) throw;
+    std::string listed;
+    for (const SpecOverride& o : overrides) listed += (listed.empty() ? "" : " ") + o.text();
+    throw SpecError(std::string(e.what()) + " (the spec with --set " + listed + ")");
+  }
   s.files.insert(s.files.begin(), InputRecord{path, fnv1a64(text)});
   if (s.name.empty()) {
     std::string stem = path.substr(slash == std::string::npos ? 0 : slash + 1);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/spec/input_file.hpp"
+#include "engine/spec/spec_overrides.hpp"
 #include "kernels/core/run_params.hpp"
 
 namespace chaosweep {
@@ -126,7 +127,9 @@ struct MapVariant {
 // that sets nothing, or an `extends` chain that comes back to a spec of the
 // chain, is refused (SpecError).
 SweepSpec parse_sweep_spec(const std::string& text, const std::string& source_name, const std::string& dir = ".");
-SweepSpec load_sweep_spec(const std::string& path);
+// `overrides` (--set, engine/spec/spec_overrides.hpp) change the file's text
+// before it is parsed; the spec's text (and so its hash) is the changed one.
+SweepSpec load_sweep_spec(const std::string& path, const std::vector<SpecOverride>& overrides = {});
 
 // Sets `key` (a parameter name, or size, start, ic, env, label) to v.
 // Throws SpecError naming the key and its allowed values.

@@ -6,6 +6,7 @@ namespace chaosweep {
 
 void add_sweep_flags(CLI::App& cmd, SweepFlags& o) {
   cmd.add_option("spec", o.spec, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
+  add_set_option(cmd, o.sets);
   cmd.add_option("-o,--output", o.out, "result file (HDF5)")->required();
   cmd.add_option("--threads", o.threads, "worker threads (0: all cores)")
       ->check(CLI::Number)

@@ -2,6 +2,7 @@
 // The flags of `chaosweep sweep`, as parsed.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -9,6 +10,7 @@ namespace chaosweep {
 
 struct SweepFlags {
   std::string spec, out, shard, progress = "auto";
+  std::vector<std::string> sets;  // --set KEY=VALUE
   int threads = 0;
   std::int64_t batch = 4096;
   double flush_seconds = 10;
