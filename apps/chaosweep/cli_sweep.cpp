@@ -15,6 +15,7 @@
 #include "apps/chaosweep/sweep/sweep_resume.hpp"
 #include "apps/chaosweep/sweep/sweep_shard.hpp"
 #include "apps/chaosweep/sweep/sweep_signals.hpp"
+#include "apps/chaosweep/sweep_history.hpp"
 #include "engine/run/progress.hpp"
 #include "engine/run/simd_choice.hpp"
 #include "engine/run/sweep_runner.hpp"
@@ -152,7 +153,17 @@ int sweep_command(const SweepFlags& o) {
     if (!o.quiet) std::cout << o.out << " is complete: nothing to resume\n";
     return exit_ok;
   }
-  return write_sweep(o, in, inputs, start);
+  SweepRecord record;
+  record.spec = o.spec;
+  record.out = o.out;
+  record.shard = std::to_string(in.shard.index) + "/" + std::to_string(in.shard.count);
+  record.runs = shard_size(in.spec.size(), in.shard.index, in.shard.count);
+  record.resume = start.resuming;
+  for (const std::string& s : o.sets) record.sets += " --set " + s;
+  const std::string id = record_sweep_start(record, o.quiet);
+  const int status = write_sweep(o, in, inputs, start);
+  record_sweep_end(id, status, o.quiet);
+  return status;
 }
 
 }  // namespace

@@ -648,3 +648,48 @@ TEST(CliBench, PipelineMeasuresOneTargetAndRefusesAnUnknownOne) {
   EXPECT_EQ(zero.exit_code, 2);
   EXPECT_NE(zero.err.find("--seconds"), std::string::npos) << zero.err;
 }
+
+// `chaosweep log`: every sweep that started writing, with what it left.
+TEST(CliLog, ListsFinishedRunningStoppedAndKilledSweepsWithTheirRows) {
+  TempDir tmp;
+  const std::string history = tmp.file("history.tsv");
+  setenv("CHAOSWEEP_HISTORY", history.c_str(), 1);  // the children inherit it
+  write_file(tmp.file("s.toml"), long_sweep);
+  write_file(tmp.file("small.toml"), chaosweep::test::small_spec_18_runs("log-small"));
+  ASSERT_EQ(run_chaosweep("sweep " + tmp.file("small.toml") + " -q -o " + tmp.file("done.h5")).exit_code, 0);
+  for (const int sig : {SIGINT, SIGKILL}) {
+    const std::string out = tmp.file(sig == SIGINT ? "stopped.h5" : "killed.h5");
+    const int pid =
+        chaosweep::test::start_chaosweep("sweep " + tmp.file("s.toml") + " --threads 1 --batch 1000 -q -o " + out);
+    ASSERT_TRUE(wait_for_rows(out + ".partial", 1000, pid));
+    const auto live = run_chaosweep("log --last 1");
+    EXPECT_NE(live.out.find("running"), std::string::npos) << live.out;
+    EXPECT_NE(live.out.find(out + " <- "), std::string::npos) << live.out;
+    kill(pid, sig);
+    chaosweep::test::wait_exit(pid);
+  }
+  // Refused before it writes (an existing output without --force): not a sweep that ran.
+  EXPECT_EQ(run_chaosweep("sweep " + tmp.file("small.toml") + " -q -o " + tmp.file("done.h5")).exit_code, 2);
+  const auto log = run_chaosweep("log");
+  unsetenv("CHAOSWEEP_HISTORY");
+  ASSERT_EQ(log.exit_code, 0) << log.err;
+  auto line_of = [&](const std::string& out) {
+    const auto at = log.out.find(tmp.file(out) + " <- ");
+    if (at == std::string::npos) return std::string();
+    const auto begin = log.out.rfind('\n', at) + 1;
+    return log.out.substr(begin, log.out.find('\n', at) - begin);
+  };
+  EXPECT_NE(line_of("done.h5").find("finished"), std::string::npos) << log.out;
+  EXPECT_NE(line_of("done.h5").find("of 18 "), std::string::npos) << log.out;
+  EXPECT_NE(line_of("done.h5").find(tmp.file("small.toml")), std::string::npos) << log.out;
+  EXPECT_NE(line_of("stopped.h5").find("stopped (SIGINT), resumable"), std::string::npos) << log.out;
+  EXPECT_NE(line_of("stopped.h5").find(" of " + std::to_string(long_sweep_runs) + " done"), std::string::npos)
+      << log.out;
+  EXPECT_NE(line_of("killed.h5").find("killed, resumable"), std::string::npos) << log.out;
+  EXPECT_EQ(log.out.find(tmp.file("done.h5") + " <- "), log.out.rfind(tmp.file("done.h5") + " <- ")) << log.out;
+  // A history that cannot be written costs the sweep nothing but a warning.
+  const auto unrecorded = run_chaosweep("sweep " + tmp.file("small.toml") + " -o " + tmp.file("u.h5"),
+                                        "env CHAOSWEEP_HISTORY=/proc/no/such/history.tsv");
+  EXPECT_EQ(unrecorded.exit_code, 0) << unrecorded.err;
+  EXPECT_NE(unrecorded.err.find("cannot record the sweep"), std::string::npos) << unrecorded.err;
+}
