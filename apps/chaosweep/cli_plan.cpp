@@ -3,12 +3,14 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <thread>
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
 #include "engine/run/simd_choice.hpp"
 #include "engine/run/sweep_runner.hpp"
 #include "engine/run/thread_batch_evaluator.hpp"
+#include "engine/run/wall_time_estimate.hpp"
 #include "engine/spec/work_bound.hpp"
 #include "kernels/core/param_table.hpp"
 
@@ -70,16 +72,53 @@ double calibrate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget targ
   return steps > 0 ? 1e9 * s / steps : NAN;
 }
 
+struct EstimateFlags {
+  bool on = false;
+  int threads = 0;
+  std::int64_t runs = 1024;
+};
+
+std::string duration_text(double s) {
+  char buf[64];
+  if (s < 120) std::snprintf(buf, sizeof buf, "%.3g s", s);
+  else if (s < 7200) std::snprintf(buf, sizeof buf, "%.3g min", s / 60);
+  else std::snprintf(buf, sizeof buf, "%.3g h", s / 3600);
+  return buf;
+}
+
+void print_estimate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget target, const EstimateFlags& o) {
+  const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  const WallTimeEstimate e = estimate_wall_time(spec, cache, ThreadBatchEvaluator(threads, target), o.runs);
+  std::cout << "estimate    " << duration_text(e.seconds) << " wall on " << threads << " threads";
+  if (e.runs_drawn == spec.size()) {
+    std::cout << " (every run was run: the time of the calibration itself)\n";
+    return;
+  }
+  std::cout << " (~95% interval " << duration_text(e.low) << " to " << duration_text(e.high) << "), from "
+            << e.runs_drawn << " runs drawn across the spec that took " << duration_text(e.sample_seconds) << " here\n"
+            << "            (the interval is the sampling error of the runs' work; the sample's last runs leave\n"
+            << "            lanes idle, so it errs long, the more the fewer runs; a shared machine moves it)\n";
+}
+
 }  // namespace
 
 void add_plan_command(CLI::App& app, std::function<int()>& action) {
   auto* cmd = app.add_subcommand("plan", "Show what a sweep spec expands to and bound its work, without running it");
   auto spec_path = std::make_shared<std::string>();
   auto sets = std::make_shared<std::vector<std::string>>();
+  auto est = std::make_shared<EstimateFlags>();
   cmd->add_option("spec", *spec_path, "sweep spec (TOML)")->required()->check(CLI::ExistingFile);
   add_set_option(*cmd, *sets);
-  cmd->callback([spec_path, sets, &action] {
-    action = [spec_path, sets]() -> int {
+  cmd->add_flag("--estimate", est->on,
+                "also run calibration runs drawn across the spec and estimate the sweep's wall time");
+  cmd->add_option("--threads", est->threads, "threads the sweep will use, for --estimate (default: all cores)")
+      ->check(CLI::Range(0, 4096));
+  cmd->add_option("--calibration", est->runs,
+                  "calibration runs for --estimate (default 1024; more narrow the interval and the overestimate a "
+                  "small sample makes)")
+      ->check(CLI::Range(1, 100000));
+  cmd->callback([spec_path, sets, est, &action] {
+    action = [spec_path, sets, est]() -> int {
       SweepSpec spec;
       EnvironmentCache cache;
       SimdTarget target;
@@ -138,6 +177,7 @@ void add_plan_command(CLI::App& app, std::function<int()>& action) {
       if (work.sampled)
         std::cout << "            (estimated from " << work.evaluated
                   << " runs drawn at random: the axes that set time budgets have too many combinations to walk)\n";
+      if (est->on) print_estimate(spec, cache, target, *est);
       return exit_ok;
     };
   });

@@ -30,6 +30,10 @@ TEST(CliSet, ASweepRunsStoresAndResumesTheChangedSpec) {
   ASSERT_EQ(plan.exit_code, 0) << plan.err;
   EXPECT_NE(plan.out.find("runs        12  (2 x 2 x 3)"), std::string::npos) << plan.out;
   EXPECT_NE(plan.out.find("--set       sr=3 A=[0.45, 0.55]"), std::string::npos) << plan.out;
+  const auto estimate = run_chaosweep("plan " + tmp.file("s.toml") + sets + " --estimate --calibration 8 --threads 1");
+  ASSERT_EQ(estimate.exit_code, 0) << estimate.err;
+  EXPECT_NE(estimate.out.find("wall on 1 threads (~95% interval "), std::string::npos) << estimate.out;
+  EXPECT_NE(estimate.out.find("from 8 runs drawn across the spec"), std::string::npos) << estimate.out;
   const std::string args = "sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("r.h5");
   ASSERT_EQ(run_chaosweep(args + sets).exit_code, 0);
   EXPECT_EQ(chaosweep::read_f64_column(tmp.file("r.h5"), "sr"), std::vector<double>(12, 3.0));
