@@ -46,7 +46,8 @@ void LaneBinding::write_lane(LaneArrays& a, int l) {
   // A bouncing robot's displacement takes signs the vector code does not
   // apply: its steps all go to the scalar path (correct first; fast later).
   const bool bounces = run_.p_.obstacle_response == ObstacleResponse::reflect && !run_.env_.obstacles.empty();
-  a.fast[l] = run_.trace_ != nullptr || bounces ? 0.0 : run_.p_.map_zoning ? 1.0 : 2.0;
+  // A grid counting by region (map zoning) is marked by CoverageGrid alone.
+  a.fast[l] = run_.trace_ != nullptr || bounces ? 0.0 : run_.p_.map_zoning || run_.grid_.regions() ? 1.0 : 2.0;
   // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
   // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
   const bool fold = run_.p_.boundary == Boundary::fold;
