@@ -59,9 +59,18 @@ class CoverageGrid {
     window_distinct_ = 0;
   }
   int window_distinct() const { return window_distinct_; }
-  // For the lane integrators, which mark the cells of a window-free run
-  // without regions in place (LaneArrays::cells) and count them: the bytes
-  // (row-major, nx per row) and the count taken back.
+  // For the lane integrators, which mark a windowed run's entered cells
+  // themselves (LaneArrays::stamp): the window stamps (nullptr before the
+  // first window), the window now and the distinct count taken back.
+  std::uint32_t* window_stamps() { return stamp_.empty() ? nullptr : stamp_.data(); }
+  std::uint32_t window() const { return window_; }
+  void set_window_distinct(int n) { window_distinct_ = n; }
+  // And the visited counts by region (count_regions; nullptr without).
+  const int* region_of_cell() const { return region_ ? region_->data() : nullptr; }
+  int* region_visited_counts() { return region_ ? region_visited_.data() : nullptr; }
+  // For the lane integrators, which mark entered cells in place
+  // (LaneArrays::cells) and count them: the bytes (row-major, nx per row)
+  // and the count taken back.
   std::uint8_t* cell_bytes() { return cells_.data(); }
   void set_visited_cells(int n) { visited_ = n; }
   void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
