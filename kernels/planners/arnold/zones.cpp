@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <tuple>
+#include <utility>
 
 #include "kernels/core/setup_cache.hpp"
 
@@ -73,12 +74,19 @@ std::shared_ptr<const Zones> shared_zones(const Environment& env, const Coverage
 
 std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, double x, double y, bool distance_first) {
   std::erase_if(zones, [&](const ZoneInfo& z) { return z.free_cells == 0 || !z.has_goal || z.index == robot_zone; });
-  auto key = [&](const ZoneInfo& z) {
+  // Each key once: the sort compares every zone several times (a hypot each).
+  std::vector<std::pair<std::tuple<double, double, int>, std::size_t>> keys;
+  keys.reserve(zones.size());
+  for (std::size_t k = 0; k < zones.size(); ++k) {
+    const ZoneInfo& z = zones[k];
     const double d = std::hypot(z.goal_x - x, z.goal_y - y);
-    return distance_first ? std::tuple{d, z.density(), z.index} : std::tuple{z.density(), d, z.index};
-  };
-  std::sort(zones.begin(), zones.end(), [&](const ZoneInfo& a, const ZoneInfo& b) { return key(a) < key(b); });
-  return zones;
+    keys.push_back({distance_first ? std::tuple{d, z.density(), z.index} : std::tuple{z.density(), d, z.index}, k});
+  }
+  std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<ZoneInfo> order;
+  order.reserve(zones.size());
+  for (const auto& key : keys) order.push_back(zones[key.second]);
+  return order;
 }
 
 bool zones_distance_first(ZoneOrder order, bool obstacles) {
