@@ -11,13 +11,13 @@ original-open on the same size and SR.
   usage: tests/benchmarks/variant_steps.py RUNS BIN...
 """
 import os
-import resource
-import subprocess
 import sys
 import tempfile
 
 import h5py
-import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sweep_cpu import cpu  # noqa: E402  (the same CPU measure as the shard timings)
 
 MAPS = [("200m SR1 open", 200, 1, "no_obstacles"), ("200m SR1 five", 200, 1, "five_squares"),
         ("50m SR1 open", 50, 1, "no_obstacles"), ("50m SR1 five", 50, 1, "five_squares"),
@@ -29,13 +29,6 @@ VARIANTS = [("original", ""), ("MZ", "map_zoning = 1\nc = 0.5\n"),
 def spec(runs, size, sr, env, fixed):
     return (f'[sweep]\nname = "variant_steps"\n[fixed]\ndc = 0.9\nmax_pr = 50\nic_jitter = 1e-6\nds_index = 3\n'
             f'size = {size}\nsr = {sr}\nenv = "{env}"\n{fixed}[axes]\nseed = {{ start = 0, stop = {runs - 1}, step = 1 }}\n')
-
-
-def cpu_of(cmd):
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(cmd, check=True)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def main():
@@ -51,10 +44,10 @@ def main():
                     f.write(spec(runs, size, sr, env, fixed))
                 for b, binary in enumerate(bins):
                     out = os.path.join(work, f"{b}.h5")
-                    cpu = cpu_of([binary, "sweep", path, "-o", out, "--threads", "1", "-q", "--progress", "never",
+                    t = cpu([binary, "sweep", path, "-o", out, "--threads", "1", "-q", "--progress", "never",
                                   "--force"])
                     r = h5py.File(out, "r")["runs"][...]
-                    ns[b, label, variant] = 1e9 * cpu / float(r["steps"].sum() + r["transit_points"].sum())
+                    ns[b, label, variant] = 1e9 * t / float(r["steps"].sum() + r["transit_points"].sum())
     for b, binary in enumerate(bins):
         print(f"== {binary} ({runs} runs per cell)")
         print(f"{'map':15}" + "".join(f"{v:>18}" for v, _ in VARIANTS) + "   (ns/step, x original-open)")

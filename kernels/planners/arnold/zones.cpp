@@ -57,7 +57,8 @@ std::vector<ZoneInfo> Zones::snapshot(const CoverageGrid& grid) const {
   const std::vector<int>& cell_zone = *cell_zone_;
   for (int j = 0; j < grid.ny(); ++j)
     for (int i = 0; i < grid.nx(); ++i)
-      if (grid.at(i, j) == CoverageGrid::visited) ++z[std::size_t(cell_zone[std::size_t(j) * grid.nx() + i])].visited_cells;
+      if (grid.at(i, j) == CoverageGrid::visited)
+        ++z[std::size_t(cell_zone[std::size_t(j) * grid.nx() + i])].visited_cells;
   return z;
 }
 
