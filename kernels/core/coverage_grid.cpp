@@ -39,6 +39,14 @@ CoverageGrid::CoverageGrid(const Environment& env, double cell_size)
   free_ = int(std::count(cells_.begin(), cells_.end(), unvisited));
 }
 
+void CoverageGrid::count_regions(std::shared_ptr<const std::vector<int>> region_of_cell, int regions) {
+  region_ = std::move(region_of_cell);
+  region_visited_.assign(std::size_t(regions), 0);
+  if (visited_ == 0) return;
+  for (std::size_t k = 0; k < cells_.size(); ++k)
+    if (cells_[k] == visited) ++region_visited_[std::size_t((*region_)[k])];
+}
+
 void CoverageGrid::mark_crossing(double x0, double y0, double x1, double y1) {
   int i = cell_x(x0), j = cell_y(y0);
   const int i_end = cell_x(x1), j_end = cell_y(y1);

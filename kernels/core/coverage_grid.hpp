@@ -3,6 +3,7 @@
 // (the last row/column clipped to the map), a cell free when its centre is not
 // inside an obstacle. Tracks visited free cells incrementally.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "kernels/core/environment.hpp"
@@ -37,9 +38,18 @@ class CoverageGrid {
       stamp_[k] = window_;
       ++window_distinct_;
     }
+    if (c == unvisited && region_) ++region_visited_[std::size_t((*region_)[k])];
     visited_ += (c == unvisited);
     c = c == unvisited ? std::uint8_t(visited) : c;
   }
+
+  // Visited cells per region, kept up to date as cells are marked, so that
+  // MapZoning's zone densities cost O(zones) instead of a pass over the grid
+  // at every zoning attempt. region_of_cell: the region (0 .. regions - 1) of
+  // each cell, row-major; counting starts from the grid as it is now.
+  void count_regions(std::shared_ptr<const std::vector<int>> region_of_cell, int regions);
+  const std::vector<int>* regions() const { return region_.get(); }
+  int region_visited(int k) const { return region_visited_[std::size_t(k)]; }
 
   // Eq. 5 needs the distinct free cells touched in a window (a segment), new
   // or repeated. Counting starts with the first begin_window().
@@ -49,9 +59,18 @@ class CoverageGrid {
     window_distinct_ = 0;
   }
   int window_distinct() const { return window_distinct_; }
-  // For the lane integrators, which mark the cells of a window-free run in
-  // place (LaneArrays::cells) and count them: the bytes (row-major, nx per
-  // row) and the count taken back.
+  // For the lane integrators, which mark a windowed run's entered cells
+  // themselves (LaneArrays::stamp): the window stamps (nullptr before the
+  // first window), the window now and the distinct count taken back.
+  std::uint32_t* window_stamps() { return stamp_.empty() ? nullptr : stamp_.data(); }
+  std::uint32_t window() const { return window_; }
+  void set_window_distinct(int n) { window_distinct_ = n; }
+  // And the visited counts by region (count_regions; nullptr without).
+  const int* region_of_cell() const { return region_ ? region_->data() : nullptr; }
+  int* region_visited_counts() { return region_ ? region_visited_.data() : nullptr; }
+  // For the lane integrators, which mark entered cells in place
+  // (LaneArrays::cells) and count them: the bytes (row-major, nx per row)
+  // and the count taken back.
   std::uint8_t* cell_bytes() { return cells_.data(); }
   void set_visited_cells(int n) { visited_ = n; }
   void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
@@ -78,6 +97,8 @@ class CoverageGrid {
   std::vector<std::uint32_t> stamp_;  // window id of each cell's last touch
   std::uint32_t window_ = 0;
   int window_distinct_ = 0;
+  std::shared_ptr<const std::vector<int>> region_;  // see count_regions
+  std::vector<int> region_visited_;
 };
 
 }  // namespace chaosweep

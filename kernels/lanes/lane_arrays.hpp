@@ -37,13 +37,24 @@ struct LaneArrays {
   alignas(64) double inv_cell[max_lanes], max_i[max_lanes], max_j[max_lanes];
   alignas(64) double cell_i[max_lanes], cell_j[max_lanes];
   // 0: no fast path; 1: steps that stay in their cell; 2: also steps into a
-  // neighbouring cell across one edge (no map zoning, whose windows count
-  // every cell touched).
+  // neighbouring cell across one edge.
   alignas(64) double fast[max_lanes];
   // fast = 2: the integrator marks an entered cell itself in the run's grid
   // (CoverageGrid's bytes, max_i + 1 per row), counts it and stamps t_last_new.
   unsigned char* cells[max_lanes];
   double visited[max_lanes], needed[max_lanes];
+  // cell_k: the lane's cell (cell_j * (max_i + 1) + cell_i), kept by the
+  // scalar code. Map zoning: Eq. 5's window (CoverageGrid::begin_window) —
+  // an entered step stamps the cell it left and the one it entered with
+  // `window` and counts the cells new to the window in window_distinct
+  // (stamp nullptr: no window); and the visited cells by zone
+  // (CoverageGrid::count_regions: region[cell], region_visited[zone]; nullptr: none).
+  long cell_k[max_lanes];
+  unsigned* stamp[max_lanes];
+  unsigned window[max_lanes];
+  int window_distinct[max_lanes];
+  const int* region[max_lanes];
+  int* region_visited[max_lanes];
   // Maps with obstacles: the cells Eq. 8 leaves alone (cells_clear_of_obstacles;
   // nullptr: no obstacles). A step is applied only when it ends in such a
   // cell; the lane keeps whether its cell and its four neighbours are

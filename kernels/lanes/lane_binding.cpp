@@ -46,7 +46,7 @@ void LaneBinding::write_lane(LaneArrays& a, int l) {
   // A bouncing robot's displacement takes signs the vector code does not
   // apply: its steps all go to the scalar path (correct first; fast later).
   const bool bounces = run_.p_.obstacle_response == ObstacleResponse::reflect && !run_.env_.obstacles.empty();
-  a.fast[l] = run_.trace_ != nullptr || bounces ? 0.0 : run_.p_.map_zoning ? 1.0 : 2.0;
+  a.fast[l] = run_.trace_ != nullptr || bounces ? 0.0 : 2.0;
   // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
   // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
   const bool fold = run_.p_.boundary == Boundary::fold;
@@ -60,15 +60,25 @@ void LaneBinding::write_lane(LaneArrays& a, int l) {
   a.inv_cell[l] = run_.grid_.inv_cell_size();
   a.max_i[l] = run_.grid_.nx() - 1;
   a.max_j[l] = run_.grid_.ny() - 1;
-  a.cell_i[l] = run_.grid_.cell_x(run_.robot_.x());
-  a.cell_j[l] = run_.grid_.cell_y(run_.robot_.y());
   a.cells[l] = run_.grid_.cell_bytes();
   a.visited[l] = run_.grid_.visited_cells();
+  a.stamp[l] = run_.grid_.window_stamps();
+  a.window[l] = run_.grid_.window();
+  a.region[l] = run_.grid_.region_of_cell();
+  a.region_visited[l] = run_.grid_.region_visited_counts();
+  lane_cell(a, l);
   a.needed[l] = double(run_.needed_);
   if (!run_.env_.obstacles.empty() && clear_.empty())
     clear_ = cells_clear_of_obstacles(run_.env_, run_.p_.fo, run_.grid_.nx(), run_.grid_.ny(), run_.grid_.cell_size());
   a.clear[l] = run_.env_.obstacles.empty() ? nullptr : clear_.data();
   lane_clearance<double>(a, l);
+}
+
+void LaneBinding::lane_cell(LaneArrays& a, int l) const {
+  a.cell_i[l] = run_.grid_.cell_x(run_.robot_.x());
+  a.cell_j[l] = run_.grid_.cell_y(run_.robot_.y());
+  a.cell_k[l] = long(a.cell_j[l]) * run_.grid_.nx() + long(a.cell_i[l]);
+  a.window_distinct[l] = run_.grid_.window_distinct();
 }
 
 void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
@@ -77,6 +87,7 @@ void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
   run_.r_.steps = std::int64_t(a.steps[l]);
   run_.seg_step_ = int(a.seg_step[l]);
   run_.grid_.set_visited_cells(int(a.visited[l]));
+  run_.grid_.set_window_distinct(a.window_distinct[l]);
   run_.last_visited_ = run_.grid_.visited_cells();
   run_.t_last_new_ = a.t_last_new[l];
 }
@@ -98,8 +109,7 @@ bool LaneBinding::lane_step(LaneArrays& a, int l) {
   a.seg_step[l] = run_.seg_step_;
   a.t_last_new[l] = run_.t_last_new_;
   a.visited[l] = run_.grid_.visited_cells();
-  a.cell_i[l] = run_.grid_.cell_x(run_.robot_.x());
-  a.cell_j[l] = run_.grid_.cell_y(run_.robot_.y());
+  lane_cell(a, l);
   lane_clearance<double>(a, l);
   return false;
 }

@@ -40,6 +40,8 @@ class LaneBinding {
   // Lane l's Arnold state and its trig in the run's own labels.
   Vec3<double> lane_state(const LaneArrays& a, int l) const;
   Trig3<double> lane_trig(const LaneArrays& a, int l) const;
+  // Lane l's cell and the window's distinct count, from the run.
+  void lane_cell(LaneArrays& a, int l) const;
 
   PlannerRun run_;
   // The cells Eq. 8 leaves alone (made at the first write_lane).

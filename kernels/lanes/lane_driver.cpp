@@ -87,6 +87,12 @@ class LaneDriver final : public LaneSink {
     a_.inv_cell[l] = 1.0;
     a_.max_i[l] = a_.max_j[l] = a_.cell_i[l] = a_.cell_j[l] = 0.0;
     a_.cells[l] = nullptr;
+    a_.cell_k[l] = 0;
+    a_.stamp[l] = nullptr;
+    a_.window[l] = 0;
+    a_.window_distinct[l] = 0;
+    a_.region[l] = nullptr;
+    a_.region_visited[l] = nullptr;
     a_.clear[l] = nullptr;
     a_.clear_here[l] = a_.clear_left[l] = a_.clear_right[l] = a_.clear_down[l] = a_.clear_up[l] = 0.0;
     a_.visited[l] = 0.0;

@@ -104,19 +104,30 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passe
 }
 
 // Marks the cells the `entered` lanes' applied steps entered, as
-// CoverageGrid::mark_cell and after_move would (a new cell counts and stamps
-// t_last_new); returns the lanes whose count reached dc. Scalar: a lane
-// enters a cell about once in 30 steps. A template on V only to keep each
-// kernel file's copy its own (tests/check_simd_symbols.sh).
+// CoverageGrid::mark_segment (its mark_crossing across one edge marks the
+// cell left, then the one entered) and after_move would: the window's
+// stamps, a new cell counted (by zone too) and t_last_new stamped; returns
+// the lanes whose count reached dc. Scalar: a lane enters a cell about once
+// in 30 steps. A template on V only to keep each kernel file's copy its own
+// (tests/check_simd_symbols.sh).
 template <class V>
 inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
   unsigned covered = 0;
   for (; entered != 0; entered &= entered - 1) {
     const int l = __builtin_ctz(entered);
     if (a.clear[l] != nullptr) lane_clearance<V>(a, l);
-    unsigned char& c = a.cells[l][long(a.cell_j[l]) * (long(a.max_i[l]) + 1) + long(a.cell_i[l])];
+    const long k = long(a.cell_j[l]) * (long(a.max_i[l]) + 1) + long(a.cell_i[l]);
+    unsigned char& c = a.cells[l][k];
+    if (unsigned* stamp = a.stamp[l]) {
+      const long left = a.cell_k[l];
+      const unsigned w = a.window[l];
+      if (a.cells[l][left] != 2 && stamp[left] != w) stamp[left] = w, ++a.window_distinct[l];  // 2: blocked
+      if (stamp[k] != w) stamp[k] = w, ++a.window_distinct[l];
+    }
+    a.cell_k[l] = k;
     if (c != 0) continue;  // visited already (a cell clear of obstacles is not blocked)
     c = 1;
+    if (a.region[l] != nullptr) ++a.region_visited[l][a.region[l][k]];
     a.t_last_new[l] = a.t[l];
     a.visited[l] += 1.0;
     if (a.visited[l] >= a.needed[l]) covered |= 1u << l;

@@ -3,10 +3,13 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <optional>
 
+#include "engine/spec/environment_loader.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
 #include "kernels/lanes/lane_arrays.hpp"
+#include "kernels/lanes/lane_binding.hpp"
 #include "kernels/math/sincos.hpp"
 #include "kernels/planners/planner.hpp"
 #include "kernels/systems/arnold_flow.hpp"
@@ -114,6 +117,31 @@ void BM_run_among_obstacles(benchmark::State& state) {
   time_runs(state, p, env);
 }
 BENCHMARK(BM_run_among_obstacles)->Arg(5)->Arg(1000)->Arg(9000)->Unit(benchmark::kMillisecond);
+
+// A lane run's setup on a 200 m SR 1 map (issue 20: 1.1-1.5 ms), everything
+// before its first step: validation, grid, free area, the zones (map zoning,
+// arg 1), the segment's window, the cells clear of Eq. 8. Arg 0: open (0)
+// or five squares (1).
+void BM_run_setup_200m_sr1(benchmark::State& state) {
+  const Environment env = load_environment(state.range(0) ? "five_squares" : "no_obstacles", 200, 200);
+  RunParams p;
+  p.size_x = p.size_y = 200;
+  p.sr = 1;
+  p.start_x = p.start_y = 0.5;
+  p.map_zoning = state.range(1) != 0;
+  LaneArrays a;
+  a.lanes = 1;
+  for (auto _ : state) {
+    std::optional<CoverageGrid> grid;
+    RunResult r;
+    if (!prepare_run(p, env, grid, r)) return state.SkipWithError(r.message.c_str());
+    LaneBinding run(p, env, *grid, r);
+    run.run().start();
+    run.write_lane(a, 0);
+    benchmark::DoNotOptimize(a.X[0]);
+  }
+}
+BENCHMARK(BM_run_setup_200m_sr1)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -10,11 +10,12 @@ namespace chaosweep {
 
 void PlannerRun::map_zoning() {
   ++r_.zonings;
-  std::vector<bool> dropped(std::size_t(zones_.count()), false);
+  const Zones& zones = this->zones();
+  std::vector<bool> dropped(std::size_t(zones.count()), false);
   for (;;) {
     // Re-ranked from wherever the robot now is: failed transits move it.
-    const auto order = zone_order(zones_.snapshot(grid_), zones_.zone_of(robot_.x(), robot_.y()), robot_.x(),
-                                  robot_.y(), zones_distance_first(p_.zone_order, !env_.obstacles.empty()));
+    const auto order = zone_order(zones.snapshot(grid_), zones.zone_of(robot_.x(), robot_.y()), robot_.x(), robot_.y(),
+                                  zones_distance_first(p_.zone_order, !env_.obstacles.empty()));
     const ZoneInfo* next = nullptr;
     for (const ZoneInfo& z : order)
       if (!dropped[std::size_t(z.index)]) {

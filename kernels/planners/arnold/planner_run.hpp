@@ -4,6 +4,7 @@
 // transits (Algorithms 2 and 4) and scaling, or Logistic-map segments only.
 // Scalar reference; the SIMD kernels reproduce its Arnold steps bit for bit.
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "kernels/core/coverage_grid.hpp"
@@ -61,6 +62,9 @@ class PlannerRun {
   // dt and checks every way the run can end. Returns true when it ended.
   [[gnu::always_inline]] inline bool after_move(double dt, SegmentKind kind);
   void end(Status s, const char* why = nullptr);
+  // The run's zones, made at the first need (map zoning on: at the start),
+  // the grid counting visited cells by zone from then on.
+  const Zones& zones();
   // The lane marshalling copies the whole state into a lane and back: a
   // friend rather than accessors for every member.
   friend class LaneBinding;
@@ -86,7 +90,7 @@ class PlannerRun {
   int th_;
   RobotMotion robot_;
   LogisticMap logistic_;
-  Zones zones_;
+  std::shared_ptr<const Zones> zones_;  // null until zones()
   bool ended_ = false;
   int seg_step_ = 0;
   long seg_before_ = 0, seg_c_u_ = 0;

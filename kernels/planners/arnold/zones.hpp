@@ -1,6 +1,7 @@
 #pragma once
 // MapZoning's zones (seed 000, Algorithm 2): the map split into zx x zy
 // rectangles, each with its midpoint and coverage density.
+#include <memory>
 #include <vector>
 
 #include "kernels/core/coverage_grid.hpp"
@@ -28,15 +29,25 @@ class Zones {
   Zones(const Environment& env, const CoverageGrid& grid, int zx, int zy, bool free_goal, double fo);
   int count() const { return zx_ * zy_; }
   int zone_of(double x, double y) const;
-  // Densities now (each free cell belongs to the zone holding its centre).
+  // The zone of each grid cell (row-major), for CoverageGrid::count_regions.
+  const std::shared_ptr<const std::vector<int>>& cell_zones() const { return cell_zone_; }
+  // Densities now (each free cell belongs to the zone holding its centre):
+  // O(zones) from the grid's own counts when it counts by cell_zones(), else
+  // a pass over the grid.
   std::vector<ZoneInfo> snapshot(const CoverageGrid& grid) const;
 
  private:
   double lx_, ly_;
   int zx_, zy_;
-  std::vector<int> cell_zone_;  // zone of each grid cell
-  std::vector<ZoneInfo> base_;  // midpoints and goals; counts filled by snapshot()
+  std::shared_ptr<const std::vector<int>> cell_zone_;  // zone of each grid cell
+  std::vector<ZoneInfo> base_;  // midpoints, goals and free cells; visited cells filled by snapshot()
 };
+
+// The Zones of (env, grid, zx, zy, free_goal, fo), shared by every run that
+// asks for the same: built once per distinct map, grid and parameters
+// (kernels/core/setup_cache.hpp), equal to Zones(env, grid, ...).
+std::shared_ptr<const Zones> shared_zones(const Environment& env, const CoverageGrid& grid, int zx, int zy,
+                                          bool free_goal, double fo);
 
 // Candidate zones in the order MapZoning tries them (docs/spec.md §2): zones with a free
 // cell and a goal, except the robot's. Lowest density first, ties by distance
