@@ -76,6 +76,7 @@ int run_into(const SweepFlags& o, SweepInput& in, H5RunWriter& writer, std::int6
   {
     ProgressReporter reporter(counters, shard_runs - skip, progress_mode(o));
     const ThreadBatchEvaluator evaluator(threads, in.target);
+    // Rows are encoded and compressed on the sweep's threads.
     const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
       evaluator.parallel(n, body);
     };

@@ -19,10 +19,8 @@ class ThreadBatchEvaluator final : public BatchEvaluator {
   ThreadBatchEvaluator(const ThreadBatchEvaluator&) = delete;
   ThreadBatchEvaluator& operator=(const ThreadBatchEvaluator&) = delete;
   SimdTarget target() const { return target_; }
-  // body(i) for every i in [0, n) on this evaluator's threads: work that
-  // goes with a batch's rows (e.g. encoding them, H5RunWriter::append), so
-  // --threads bounds it too.
-  void parallel(std::size_t n, const std::function<void(std::size_t)>& body) const;
+  // On this evaluator's threads (its arena).
+  void parallel(std::size_t n, const std::function<void(std::size_t)>& body) const override;
 
  private:
   std::size_t run(std::span<const RunTuple> in, std::span<RunResult> out, const BatchObserver& observer) const override;

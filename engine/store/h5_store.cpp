@@ -271,10 +271,13 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
     pieces.back().count = count;
     r += count;
   }
-  std::vector<unsigned char> buf(n * layout_.row_size, 0);
+  // Kept between appends and zeroed piece by piece: a fresh zeroed buffer
+  // per batch cost the sweep's serial thread page faults and a memset.
+  if (buf_.size() < n * layout_.row_size) buf_.resize(n * layout_.row_size);
+  unsigned char* const buf = buf_.data();
   auto encode = [&](std::size_t k) {
     EncodedPiece& p = pieces[k];
-    encode_piece(rows, layout_, p.count == chunk_rows, partial_, buf.data(), p);
+    encode_piece(rows, layout_, p.count == chunk_rows, partial_, buf, p);
   };
   if (parallel) {
     parallel(pieces.size(), encode);
@@ -300,7 +303,7 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
       } else {
         H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
         Handle mspace{H5Screate_simple(1, &count, nullptr), H5Sclose};
-        const unsigned char* from = buf.data() + p.first * layout_.row_size;
+        const unsigned char* from = buf + p.first * layout_.row_size;
         H5E_BEGIN_TRY { rc = H5Dwrite(dset_, type_, mspace.id, fspace.id, H5P_DEFAULT, from); }
         H5E_END_TRY;
       }

@@ -88,6 +88,7 @@ class H5RunWriter {
   H5Id file_ = -1, dset_ = -1, type_ = -1;
   std::size_t rows_ = 0;
   RowLayout layout_;
+  std::vector<unsigned char> buf_;  // rows of an append, encoded
 };
 
 // Writes (or replaces) an attribute on `loc` (a file or group: an hid_t). Throws

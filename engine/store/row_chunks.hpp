@@ -33,7 +33,7 @@ struct EncodedPiece {
 };
 
 // Encodes rows [piece.first, +count) of `rows` into their slice of `buf`
-// (memory layout, rows.size() * row_size zeroed bytes); with `make_chunk`
+// (memory layout, rows.size() * row_size bytes; the slice is zeroed first); with `make_chunk`
 // (a whole chunk) and no variable-length text in it, also piece.chunk.
 // Throws std::logic_error naming `file` when a value is wider than its
 // fixed column. Safe to call for disjoint pieces at once.
