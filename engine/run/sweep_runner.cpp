@@ -36,8 +36,8 @@ struct TimedSink {
 // Moves runs [from, to) (tuples and their results) into `piece` for the
 // sink: a vector kept from batch to batch (a fresh one cost the serial
 // thread page faults), filled in blocks through `parallel` when given.
-const std::vector<RunRow>& take_rows(std::vector<RunTuple>& tuples, std::vector<RunResult>& results,
-                                     std::size_t from, std::size_t to, std::vector<RunRow>& piece,
+const std::vector<RunRow>& take_rows(std::vector<RunTuple>& tuples, std::vector<RunResult>& results, std::size_t from,
+                                     std::size_t to, std::vector<RunRow>& piece,
                                      const BatchEvaluator* parallel = nullptr) {
   piece.clear();
   piece.resize(to - from);

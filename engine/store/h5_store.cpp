@@ -108,8 +108,7 @@ void H5RunWriter::learn_file_layout(hid_t dset) {
   std::size_t nvalues = 1;
   if (H5Pget_nfilters(dcpl.id) != 2 ||
       H5Pget_filter2(dcpl.id, 0, &flags, nullptr, nullptr, 0, nullptr, nullptr) != H5Z_FILTER_SHUFFLE ||
-      H5Pget_filter2(dcpl.id, 1, &flags, &nvalues, &level, 0, nullptr, nullptr) != H5Z_FILTER_DEFLATE ||
-      nvalues < 1)
+      H5Pget_filter2(dcpl.id, 1, &flags, &nvalues, &level, 0, nullptr, nullptr) != H5Z_FILTER_DEFLATE || nvalues < 1)
     return;
   hsize_t chunk = 0;
   if (H5Pget_chunk(dcpl.id, 1, &chunk) != 1 || chunk != chunk_rows) return;
@@ -129,7 +128,7 @@ void H5RunWriter::learn_file_layout(hid_t dset) {
         H5Tget_member_offset(ftype.id, unsigned(i)) == l.offsets[i] &&
         (cols[i].type == Column::Type::f64   ? H5Tequal(mt.id, H5T_NATIVE_DOUBLE) > 0
          : cols[i].type == Column::Type::i64 ? H5Tequal(mt.id, H5T_NATIVE_INT64) > 0
-         : text == 0 ? cls == H5T_STRING && H5Tis_variable_str(mt.id) > 0
+         : text == 0                         ? cls == H5T_STRING && H5Tis_variable_str(mt.id) > 0
                      : cls == H5T_STRING && H5Tis_variable_str(mt.id) <= 0 && H5Tget_size(mt.id) == text);
     if (!expected) return;
     l.file_offsets[i] = l.offsets[i] + shift;

@@ -17,12 +17,12 @@ namespace chaosweep {
 // Where each column sits in a row, in memory (what H5Dwrite converts) and in
 // the file (what a raw chunk holds).
 struct RowLayout {
-  std::size_t row_size = 0;                 // memory
-  std::vector<std::size_t> offsets;         // memory, per column
-  std::vector<std::size_t> text_sizes;      // per column: 0 variable-length, else fixed bytes
-  std::size_t file_row_size = 0;            // 0: raw chunks cannot be made (an unexpected file type)
-  std::vector<std::size_t> file_offsets;    // per column
-  int deflate_level = 4;                    // the dataset's filter (shuffle, then deflate)
+  std::size_t row_size = 0;               // memory
+  std::vector<std::size_t> offsets;       // memory, per column
+  std::vector<std::size_t> text_sizes;    // per column: 0 variable-length, else fixed bytes
+  std::size_t file_row_size = 0;          // 0: raw chunks cannot be made (an unexpected file type)
+  std::vector<std::size_t> file_offsets;  // per column
+  int deflate_level = 4;                  // the dataset's filter (shuffle, then deflate)
 };
 
 struct EncodedPiece {

@@ -45,7 +45,7 @@ TEST(ParamHash, EqualsTheSnprintfDefinitionForEveryKindOfDouble) {
                              std::numeric_limits<double>::quiet_NaN(),
                              -std::numeric_limits<double>::quiet_NaN(),
                              std::bit_cast<double>(std::uint64_t(0x7ff0000000000001ULL)),  // a signalling NaN
-                             std::ldexp(1.0, -1022) - std::ldexp(1.0, -1074),               // largest subnormal
+                             std::ldexp(1.0, -1022) - std::ldexp(1.0, -1074),              // largest subnormal
                              std::ldexp(1.0, 1023),
                              std::ldexp(1.0, -1000),
                              1.0 + std::ldexp(1.0, -52)};
@@ -74,11 +74,11 @@ TEST(ParamHash, MatchesTheHashesStoredInOlderResultFiles) {
     std::int64_t run_id, hash;
   };
   const Stored stored[] = {
-      {"demo.toml", 0, 2785451249426810172LL},       {"demo.toml", 1, -7553346876704262540LL},
-      {"demo.toml", 93, -540135775142728274LL},      {"demo.toml", 140, -8688268337617760349LL},
-      {"demo.toml", 279, -4672858733000722818LL},    {"table1.toml", 0, 7065300603989322817LL},
-      {"table1.toml", 1, 5297548751125384629LL},     {"table1.toml", 15, 7630708815750038722LL},
-      {"table1.toml", 23, -5944372837708042184LL},   {"table1.toml", 46, 5761351595718064198LL},
+      {"demo.toml", 0, 2785451249426810172LL},     {"demo.toml", 1, -7553346876704262540LL},
+      {"demo.toml", 93, -540135775142728274LL},    {"demo.toml", 140, -8688268337617760349LL},
+      {"demo.toml", 279, -4672858733000722818LL},  {"table1.toml", 0, 7065300603989322817LL},
+      {"table1.toml", 1, 5297548751125384629LL},   {"table1.toml", 15, 7630708815750038722LL},
+      {"table1.toml", 23, -5944372837708042184LL}, {"table1.toml", 46, 5761351595718064198LL},
   };
   EnvironmentCache cache;
   for (const Stored& s : stored) {
