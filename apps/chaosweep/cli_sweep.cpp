@@ -76,10 +76,15 @@ int run_into(const SweepFlags& o, SweepInput& in, H5RunWriter& writer, std::int6
   const auto started = std::chrono::steady_clock::now();
   {
     ProgressReporter reporter(counters, shard_runs - skip, progress_mode(o));
+    const ThreadBatchEvaluator evaluator(threads, in.target);
+    // Rows are encoded and compressed on the sweep's threads.
+    const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
+      evaluator.parallel(n, body);
+    };
     written += run_sweep(
-        in.spec, ThreadBatchEvaluator(threads, in.target), opt,
+        in.spec, evaluator, opt,
         [&](const std::vector<RunRow>& rows) {
-          writer.append(rows);
+          writer.append(rows, parallel);
           for (const RunRow& r : rows) summary.add(r);
         },
         &in.cache);

@@ -1,28 +1,81 @@
 #include "engine/rows/run_hash.hpp"
 
+#include <bit>
 #include <cstdio>
 
 #include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
 
-std::uint64_t fnv1a64(const std::string& bytes) {
+namespace {
+
+// FNV-1a fed byte by byte, so a hash needs no text built first.
+struct Fnv1a {
   std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) {
-    h ^= c;
+  void add(char c) {
+    h ^= static_cast<unsigned char>(c);
     h *= 0x100000001b3ULL;
   }
-  return h;
+  void add(std::string_view s) {
+    for (char c : s) add(c);
+  }
+};
+
+// The bytes glibc's printf("%a") writes for v ("0x1.8p+1", "-0x0p+0",
+// "0x0.0000000000001p-1022", "inf", "-nan"), fed to the hash: files and
+// --resume hold hashes of that text, so it must not change, and snprintf
+// was the sweep's largest serial cost (tests/engine: ParamHash).
+void add_hex_float(Fnv1a& f, double v) {
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(v);
+  const bool negative = bits >> 63;
+  const int biased = int((bits >> 52) & 0x7ff);
+  std::uint64_t mantissa = bits & ((std::uint64_t(1) << 52) - 1);
+  if (negative) f.add('-');
+  if (biased == 0x7ff) {
+    f.add(mantissa ? "nan" : "inf");
+    return;
+  }
+  f.add("0x");
+  f.add(biased == 0 ? '0' : '1');  // subnormals and zero: 0x0.
+  if (mantissa) {
+    f.add('.');
+    int digits = 13;
+    while ((mantissa & 0xf) == 0) {  // no trailing zero digits
+      mantissa >>= 4;
+      --digits;
+    }
+    for (int d = digits - 1; d >= 0; --d) f.add("0123456789abcdef"[(mantissa >> (4 * d)) & 0xf]);
+  }
+  const int exponent = biased == 0 ? (bits << 1 == 0 ? 0 : -1022) : biased - 1023;
+  f.add('p');
+  f.add(exponent < 0 ? '-' : '+');
+  char digits[8];
+  int n = 0;
+  for (int e = exponent < 0 ? -exponent : exponent; n == 0 || e > 0; e /= 10) digits[n++] = char('0' + e % 10);
+  while (n > 0) f.add(digits[--n]);
+}
+
+}  // namespace
+
+std::uint64_t fnv1a64(const std::string& bytes) {
+  Fnv1a f;
+  f.add(bytes);
+  return f.h;
 }
 
 std::int64_t param_hash(const RunParams& p, const std::string& env) {
-  std::string text = "env=" + env + ";";
-  char buf[64];
+  // The hash of "env=ENV;" then "NAME=%a;" per parameter, in table order.
+  Fnv1a f;
+  f.add("env=");
+  f.add(env);
+  f.add(';');
   for (const ParamInfo& info : param_table()) {
-    std::snprintf(buf, sizeof buf, "=%a;", info.get(p));
-    text += std::string(info.name) + buf;
+    f.add(info.name);
+    f.add('=');
+    add_hex_float(f, info.get(p));
+    f.add(';');
   }
-  return std::int64_t(fnv1a64(text));
+  return std::int64_t(f.h);
 }
 
 std::string hex64(std::uint64_t v) {

@@ -16,6 +16,10 @@ std::size_t BatchEvaluator::evaluate(std::span<const RunTuple> in, std::span<Run
   return done;
 }
 
+void BatchEvaluator::parallel(std::size_t n, const std::function<void(std::size_t)>& body) const {
+  for (std::size_t i = 0; i < n; ++i) body(i);
+}
+
 RunResult BatchEvaluator::evaluate(const RunTuple& tuple) const {
   RunResult result;
   evaluate(std::span<const RunTuple>(&tuple, 1), std::span<RunResult>(&result, 1));

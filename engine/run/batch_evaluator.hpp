@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -38,6 +39,11 @@ class BatchEvaluator {
                        const BatchObserver& observer = {}) const;
   // One run (the batch of one).
   RunResult evaluate(const RunTuple& tuple) const;
+  // body(i) for every i in [0, n), on the evaluator's threads when it has
+  // them (here: in order on this thread): the work that goes with a batch
+  // (resolving its tuples, encoding its rows), so that it scales with the
+  // runs and --threads bounds it too.
+  virtual void parallel(std::size_t n, const std::function<void(std::size_t)>& body) const;
 
  private:
   virtual std::size_t run(std::span<const RunTuple> in, std::span<RunResult> out,

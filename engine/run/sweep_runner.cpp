@@ -33,12 +33,25 @@ struct TimedSink {
   bool due() const { return std::chrono::duration<double>(clock_type::now() - last).count() >= seconds; }
 };
 
-// Moves runs [from, to) (tuples and their results) into one piece for the sink.
-std::vector<RunRow> take_rows(std::vector<RunTuple>& tuples, std::vector<RunResult>& results, std::size_t from,
-                              std::size_t to) {
-  std::vector<RunRow> piece;
-  piece.reserve(to - from);
-  for (std::size_t k = from; k < to; ++k) piece.push_back({std::move(tuples[k]), std::move(results[k])});
+// Moves runs [from, to) (tuples and their results) into `piece` for the
+// sink: a vector kept from batch to batch (a fresh one cost the serial
+// thread page faults), filled in blocks through `parallel` when given.
+const std::vector<RunRow>& take_rows(std::vector<RunTuple>& tuples, std::vector<RunResult>& results, std::size_t from,
+                                     std::size_t to, std::vector<RunRow>& piece,
+                                     const BatchEvaluator* parallel = nullptr) {
+  piece.clear();
+  piece.resize(to - from);
+  constexpr std::size_t block = 256;
+  auto move_block = [&](std::size_t b) {
+    for (std::size_t k = from + b * block; k < std::min(to, from + (b + 1) * block); ++k)
+      piece[k - from] = {std::move(tuples[k]), std::move(results[k])};
+  };
+  const std::size_t blocks = (to - from + block - 1) / block;
+  if (parallel) {
+    parallel->parallel(blocks, move_block);
+  } else {
+    for (std::size_t b = 0; b < blocks; ++b) move_block(b);
+  }
   return piece;
 }
 
@@ -77,7 +90,8 @@ std::size_t run_batch_of(std::vector<RunTuple>& tuples, std::vector<RunResult>& 
         while (p < n && finished[p].load(std::memory_order_acquire)) ++p;
         if (p == handed) continue;
         try {
-          timed->sink(take_rows(tuples, results, handed, p));
+          std::vector<RunRow> piece;
+          timed->sink(take_rows(tuples, results, handed, p, piece));
           timed->last = clock_type::now();
         } catch (...) {
           sink_failed = std::current_exception();
@@ -116,21 +130,26 @@ std::int64_t run_sweep(const SweepSpec& spec, const BatchEvaluator& evaluator, c
   const std::int64_t total = shard_size(spec.size(), opt.shard_index, opt.shard_count);
   std::vector<RunTuple> tuples;
   std::vector<RunResult> results;
+  std::vector<RunRow> piece;
   std::int64_t handed = 0;
   TimedSink timed{sink, opt.flush_seconds};
   for (std::int64_t first = opt.skip; first < total; first += opt.batch_size) {
     if (opt.stop && opt.stop->load()) break;
     const std::int64_t n = std::min(opt.batch_size, total - first);
     tuples.assign(std::size_t(n), RunTuple{});
-    for (std::int64_t k = 0; k < n; ++k) {
-      const std::int64_t id = shard_run_id(first + k, opt.shard_index, opt.shard_count);
-      tuples[std::size_t(k)] = resolve_run(id, spec.run(id), cache);
-    }
+    // Tuple k into slot k, in blocks on the evaluator's threads.
+    constexpr std::int64_t block = 256;
+    evaluator.parallel(std::size_t((n + block - 1) / block), [&](std::size_t b) {
+      for (std::int64_t k = std::int64_t(b) * block; k < std::min(n, std::int64_t(b + 1) * block); ++k) {
+        const std::int64_t id = shard_run_id(first + k, opt.shard_index, opt.shard_count);
+        tuples[std::size_t(k)] = resolve_run(id, spec.run(id), cache);
+      }
+    });
     std::size_t early = 0;  // runs the watcher handed over already
     const std::size_t done =
         run_batch_of(tuples, results, evaluator, opt, opt.flush_seconds > 0 ? &timed : nullptr, early);
     if (early < done) {
-      sink(take_rows(tuples, results, early, done));
+      sink(take_rows(tuples, results, early, done, piece, &evaluator));
       timed.last = std::chrono::steady_clock::now();
     }
     handed += std::int64_t(done);

@@ -19,6 +19,10 @@ ThreadBatchEvaluator::ThreadBatchEvaluator(int threads, SimdTarget target)
 
 ThreadBatchEvaluator::~ThreadBatchEvaluator() = default;
 
+void ThreadBatchEvaluator::parallel(std::size_t n, const std::function<void(std::size_t)>& body) const {
+  parallel_indices(arena_->arena, n, body);
+}
+
 std::size_t ThreadBatchEvaluator::run(std::span<const RunTuple> in, std::span<RunResult> out,
                                       const BatchObserver& observer) const {
   const std::size_t n = in.size();

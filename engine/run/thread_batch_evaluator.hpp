@@ -2,6 +2,8 @@
 // The batch evaluator of sweeps: the runs fanned out over oneTBB workers,
 // each driving its own SIMD lanes (kernels/lanes/lane_driver.hpp) from one
 // shared queue, so lanes idle only at the end of a batch.
+#include <cstddef>
+#include <functional>
 #include <memory>
 
 #include "engine/run/batch_evaluator.hpp"
@@ -17,6 +19,8 @@ class ThreadBatchEvaluator final : public BatchEvaluator {
   ThreadBatchEvaluator(const ThreadBatchEvaluator&) = delete;
   ThreadBatchEvaluator& operator=(const ThreadBatchEvaluator&) = delete;
   SimdTarget target() const { return target_; }
+  // On this evaluator's threads (its arena).
+  void parallel(std::size_t n, const std::function<void(std::size_t)>& body) const override;
 
  private:
   std::size_t run(std::span<const RunTuple> in, std::span<RunResult> out, const BatchObserver& observer) const override;

@@ -69,30 +69,73 @@ void H5RunWriter::lay_out(const std::map<std::string, std::size_t>& widths) {
   // Numbers 8 bytes, text fixed-length or a char* (8-byte aligned).
   const auto& cols = result_columns();
   if (type_ >= 0) H5Tclose(type_);
-  offsets_.clear();
-  text_sizes_.clear();
-  row_size_ = 0;
+  RowLayout& l = layout_;
+  l.offsets.clear();
+  l.text_sizes.clear();
+  l.row_size = 0;
   std::vector<hid_t> member(cols.size());
   for (std::size_t i = 0; i < cols.size(); ++i) {
     const Column& c = cols[i];
     const auto w = widths.find(c.name);
     const std::size_t size = c.type != Column::Type::text ? 0 : w != widths.end() ? w->second : c.text_size;
     const bool variable = c.type == Column::Type::text && size == 0;
-    if (variable) row_size_ = (row_size_ + 7) / 8 * 8;
-    offsets_.push_back(row_size_);
-    text_sizes_.push_back(size);
-    row_size_ += c.type != Column::Type::text ? 8 : variable ? sizeof(char*) : size;
+    if (variable) l.row_size = (l.row_size + 7) / 8 * 8;
+    l.offsets.push_back(l.row_size);
+    l.text_sizes.push_back(size);
+    l.row_size += c.type != Column::Type::text ? 8 : variable ? sizeof(char*) : size;
     member[i] = c.type == Column::Type::f64   ? H5Tcopy(H5T_NATIVE_DOUBLE)
                 : c.type == Column::Type::i64 ? H5Tcopy(H5T_NATIVE_INT64)
                 : variable                    ? h5::variable_text_type()
                                               : h5::fixed_text_type(size);
   }
-  row_size_ = (row_size_ + 7) / 8 * 8;
-  type_ = H5Tcreate(H5T_COMPOUND, row_size_);
+  l.row_size = (l.row_size + 7) / 8 * 8;
+  type_ = H5Tcreate(H5T_COMPOUND, l.row_size);
   for (std::size_t i = 0; i < cols.size(); ++i) {
-    H5Tinsert(type_, cols[i].name.c_str(), offsets_[i], member[i]);
+    H5Tinsert(type_, cols[i].name.c_str(), l.offsets[i], member[i]);
     H5Tclose(member[i]);
   }
+}
+
+void H5RunWriter::learn_file_layout(hid_t dset) {
+  const auto& cols = result_columns();
+  RowLayout& l = layout_;
+  l.file_row_size = 0;
+  l.file_offsets.assign(cols.size(), 0);
+  Handle ftype{H5Dget_type(dset), H5Tclose};
+  Handle dcpl{H5Dget_create_plist(dset), H5Pclose};
+  // Only the filters this writer sets (shuffle, then deflate at level 4).
+  unsigned flags = 0, level = 0;
+  std::size_t nvalues = 1;
+  if (H5Pget_nfilters(dcpl.id) != 2 ||
+      H5Pget_filter2(dcpl.id, 0, &flags, nullptr, nullptr, 0, nullptr, nullptr) != H5Z_FILTER_SHUFFLE ||
+      H5Pget_filter2(dcpl.id, 1, &flags, &nvalues, &level, 0, nullptr, nullptr) != H5Z_FILTER_DEFLATE || nvalues < 1)
+    return;
+  hsize_t chunk = 0;
+  if (H5Pget_chunk(dcpl.id, 1, &chunk) != 1 || chunk != chunk_rows) return;
+  // H5Dget_type gives the row type as read into memory (a variable-length
+  // string as a char*); in the file such a string is 16 bytes (a length and
+  // a global heap id of 8-byte addresses, the default), and HDF5 moves the
+  // members after it by the difference (H5T__set_loc). An empty one is 16
+  // zero bytes. tests/engine: StoreChunks pins this against HDF5's own
+  // chunks.
+  if (H5Tget_nmembers(ftype.id) != int(cols.size()) || H5Tget_size(ftype.id) != l.row_size) return;
+  std::size_t shift = 0;
+  for (std::size_t i = 0; i < cols.size(); ++i) {
+    Handle mt{H5Tget_member_type(ftype.id, unsigned(i)), H5Tclose};
+    const H5T_class_t cls = H5Tget_class(mt.id);
+    const std::size_t text = l.text_sizes[i];
+    const bool expected =
+        H5Tget_member_offset(ftype.id, unsigned(i)) == l.offsets[i] &&
+        (cols[i].type == Column::Type::f64   ? H5Tequal(mt.id, H5T_NATIVE_DOUBLE) > 0
+         : cols[i].type == Column::Type::i64 ? H5Tequal(mt.id, H5T_NATIVE_INT64) > 0
+         : text == 0                         ? cls == H5T_STRING && H5Tis_variable_str(mt.id) > 0
+                     : cls == H5T_STRING && H5Tis_variable_str(mt.id) <= 0 && H5Tget_size(mt.id) == text);
+    if (!expected) return;
+    l.file_offsets[i] = l.offsets[i] + shift;
+    if (cols[i].type == Column::Type::text && text == 0) shift += 16 - sizeof(char*);
+  }
+  l.deflate_level = int(level);
+  l.file_row_size = l.row_size + shift;
 }
 
 H5RunWriter::H5RunWriter(std::string path, Mode mode, const std::vector<Attribute>& attributes,
@@ -129,6 +172,7 @@ H5RunWriter::H5RunWriter(std::string path, Mode mode, const std::vector<Attribut
         H5free_memory(name);
       }
       lay_out(widths);
+      learn_file_layout(dset_);
       Handle space{H5Dget_space(dset_), H5Sclose};
       hsize_t rows = 0;
       H5Sget_simple_extent_dims(space.id, &rows, nullptr);
@@ -158,6 +202,7 @@ H5RunWriter::H5RunWriter(std::string path, Mode mode, const std::vector<Attribut
     H5Pset_deflate(dcpl.id, 4);
     Handle dset{H5Dcreate2(file, "runs", type_, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
     if (dset.id < 0) h5::fail("cannot create /runs in " + fresh);
+    learn_file_layout(dset.id);
     write_attribute(file, {"layout_version", store_layout_version});
     for (const Attribute& a : attributes) write_attribute(file, a);
     ok = true;
@@ -212,57 +257,57 @@ void H5RunWriter::set_attributes(const std::vector<Attribute>& attributes) {
   });
 }
 
-void H5RunWriter::append(const std::vector<RunRow>& rows) {
+void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& parallel) {
   if (rows.empty()) return;
-  const auto& cols = result_columns();
-  std::vector<unsigned char> buf(rows.size() * row_size_, 0);
-  std::deque<std::string> texts;  // the variable-length strings, alive (and in place) until written
-  std::size_t text_bytes = 0;
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    unsigned char* base = buf.data() + r * row_size_;
-    for (std::size_t i = 0; i < cols.size(); ++i) {
-      CellValue v = cols[i].get(rows[r]);
-      unsigned char* dst = base + offsets_[i];
-      if (const double* d = std::get_if<double>(&v)) {
-        std::memcpy(dst, d, 8);
-      } else if (const std::int64_t* n = std::get_if<std::int64_t>(&v)) {
-        std::memcpy(dst, n, 8);
-      } else if (text_sizes_[i] == 0) {
-        // "" as a null pointer: HDF5 then stores no heap object, and the
-        // row's reference is zeros, which compress away.
-        std::string& text = std::get<std::string>(v);
-        if (text.empty()) continue;
-        texts.push_back(std::move(text));
-        const char* p = texts.back().c_str();
-        std::memcpy(dst, &p, sizeof p);
-        text_bytes += texts.back().size() + 32;  // with the global heap's per-object overhead
-      } else {
-        const std::string& s = std::get<std::string>(v);
-        // Widths are made to fit (the engine's words, text_widths(spec)): a
-        // longer value is refused, never cut.
-        if (s.size() >= text_sizes_[i])
-          throw std::logic_error("column '" + cols[i].name + "' of " + partial_ + " holds " +
-                                 std::to_string(text_sizes_[i] - 1) + " bytes, but run " +
-                                 std::to_string(rows[r].tuple.run_id) + " has " + std::to_string(s.size()) + ": '" + s +
-                                 "'");
-        std::memcpy(dst, s.data(), s.size());
-      }
-    }
+  // Pieces end at the file's chunk boundaries, so each whole chunk is one.
+  const std::size_t n = rows.size();
+  std::vector<EncodedPiece> pieces;
+  for (std::size_t r = 0; r < n;) {
+    const std::size_t to_boundary = chunk_rows - (rows_ + r) % chunk_rows;
+    const std::size_t count = std::min(to_boundary, n - r);
+    pieces.emplace_back();
+    pieces.back().first = r;
+    pieces.back().count = count;
+    r += count;
   }
+  // Kept between appends and zeroed piece by piece: a fresh zeroed buffer
+  // per batch cost the sweep's serial thread page faults and a memset.
+  if (buf_.size() < n * layout_.row_size) buf_.resize(n * layout_.row_size);
+  unsigned char* const buf = buf_.data();
+  auto encode = [&](std::size_t k) {
+    EncodedPiece& p = pieces[k];
+    encode_piece(rows, layout_, p.count == chunk_rows, partial_, buf, p);
+  };
+  if (parallel) {
+    parallel(pieces.size(), encode);
+  } else {
+    for (std::size_t k = 0; k < pieces.size(); ++k) encode(k);
+  }
+  std::size_t text_bytes = 0;
+  for (const EncodedPiece& p : pieces) text_bytes += p.text_bytes;
   // Bound on what the write adds: the rows uncompressed and their text, the
   // last chunk rewritten elsewhere (compressed chunks that grow move) and its
   // old bytes in the journal, and metadata.
-  check_room(partial_, (rows.size() + 2 * chunk_rows) * row_size_ + text_bytes + (512u << 10));
-  const hsize_t start = rows_, count = rows.size(), total = rows_ + rows.size();
+  check_room(partial_, (n + 2 * chunk_rows) * layout_.row_size + text_bytes + (512u << 10));
+  const hsize_t total = rows_ + n;
   session("write rows to", [&] {
     if (H5Dset_extent(dset_, &total) < 0) h5::fail("cannot extend /runs");
     Handle fspace{H5Dget_space(dset_), H5Sclose};
-    H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
-    Handle mspace{H5Screate_simple(1, &count, nullptr), H5Sclose};
-    herr_t rc;
-    H5E_BEGIN_TRY { rc = H5Dwrite(dset_, type_, mspace.id, fspace.id, H5P_DEFAULT, buf.data()); }
-    H5E_END_TRY;
-    if (rc < 0) h5::fail("cannot write rows to " + partial_ + errno_text() + " (the disk may be full)");
+    for (const EncodedPiece& p : pieces) {
+      const hsize_t start = rows_ + p.first, count = p.count;
+      herr_t rc;
+      if (!p.chunk.empty()) {
+        H5E_BEGIN_TRY { rc = H5Dwrite_chunk(dset_, H5P_DEFAULT, 0, &start, p.chunk.size(), p.chunk.data()); }
+        H5E_END_TRY;
+      } else {
+        H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+        Handle mspace{H5Screate_simple(1, &count, nullptr), H5Sclose};
+        const unsigned char* from = buf + p.first * layout_.row_size;
+        H5E_BEGIN_TRY { rc = H5Dwrite(dset_, type_, mspace.id, fspace.id, H5P_DEFAULT, from); }
+        H5E_END_TRY;
+      }
+      if (rc < 0) h5::fail("cannot write rows to " + partial_ + errno_text() + " (the disk may be full)");
+    }
   });
   rows_ = total;
 }

@@ -16,6 +16,7 @@
 // as of its last finished write, which the next open for writing restores
 // and every reader here sees. The file is renamed to NAME only by finish().
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -25,6 +26,7 @@
 #include "engine/rows/result_columns.hpp"
 #include "engine/rows/run_row.hpp"
 #include "engine/store/h5_id.hpp"
+#include "engine/store/row_chunks.hpp"
 
 namespace chaosweep {
 
@@ -36,6 +38,10 @@ struct Attribute {
   std::string name;
   AttributeValue value;
 };
+
+// body(i) for every i in [0, n), possibly on many threads at once, returning
+// when all have finished (e.g. ThreadBatchEvaluator::parallel).
+using ParallelFor = std::function<void(std::size_t n, const std::function<void(std::size_t)>& body)>;
 
 class H5RunWriter {
  public:
@@ -57,7 +63,10 @@ class H5RunWriter {
 
   void set_attribute(const std::string& name, const std::string& value);
   void set_attributes(const std::vector<Attribute>& attributes);  // in one write
-  void append(const std::vector<RunRow>& rows);
+  // Appends rows in one write. The rows are encoded (and each whole chunk
+  // without variable-length text filtered: shuffle, deflate) piece by piece
+  // through `parallel` (none: on this thread); only the write is serial.
+  void append(const std::vector<RunRow>& rows, const ParallelFor& parallel = {});
   // Closes and renames the partial file to its final name.
   void finish();
   std::size_t rows_written() const { return rows_; }
@@ -66,6 +75,9 @@ class H5RunWriter {
   // The row type: each text column fixed-length of widths[name] bytes, else
   // that of result_columns() (0: variable-length).
   void lay_out(const std::map<std::string, std::size_t>& widths);
+  // Where the file's row type puts each column (layout_.file_*), so whole
+  // chunks can be made off the HDF5 library; none when it is not as expected.
+  void learn_file_layout(H5Id dset);
   void open();
   bool close();  // false when flushing failed
   // Runs `body` in one session; on any failure rolls the session back and
@@ -74,8 +86,9 @@ class H5RunWriter {
   void session(const char* what, Body&& body);
   std::string path_, partial_;
   H5Id file_ = -1, dset_ = -1, type_ = -1;
-  std::size_t row_size_ = 0, rows_ = 0;
-  std::vector<std::size_t> offsets_, text_sizes_;
+  std::size_t rows_ = 0;
+  RowLayout layout_;
+  std::vector<unsigned char> buf_;  // rows of an append, encoded
 };
 
 // Writes (or replaces) an attribute on `loc` (a file or group: an hid_t). Throws

@@ -1,0 +1,101 @@
+#include "engine/store/row_chunks.hpp"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#include "engine/rows/result_columns.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+// The file's bytes of `n` rows: numbers and fixed text as in memory; a
+// variable-length string that is empty (a null pointer) as HDF5 stores it,
+// a zero length and a null heap reference: all zeros.
+void to_file_layout(const unsigned char* mem, std::size_t n, const RowLayout& l, unsigned char* out) {
+  const auto& cols = result_columns();
+  for (std::size_t r = 0; r < n; ++r) {
+    const unsigned char* src = mem + r * l.row_size;
+    unsigned char* dst = out + r * l.file_row_size;
+    for (std::size_t i = 0; i < cols.size(); ++i) {
+      if (cols[i].type == Column::Type::text && l.text_sizes[i] == 0) continue;  // zeros already
+      const std::size_t size = cols[i].type == Column::Type::text ? l.text_sizes[i] : 8;
+      std::memcpy(dst + l.file_offsets[i], src + l.offsets[i], size);
+    }
+  }
+}
+
+// HDF5's shuffle filter: byte j of element i goes to j * n + i.
+std::vector<unsigned char> shuffled(const std::vector<unsigned char>& in, std::size_t element) {
+  const std::size_t n = in.size() / element;
+  std::vector<unsigned char> out(in.size());
+  // In blocks of rows, so both the reads and the writes stay in cache.
+  constexpr std::size_t block = 64;
+  for (std::size_t i0 = 0; i0 < n; i0 += block) {
+    const std::size_t i1 = std::min(n, i0 + block);
+    for (std::size_t j = 0; j < element; ++j)
+      for (std::size_t i = i0; i < i1; ++i) out[j * n + i] = in[i * element + j];
+  }
+  return out;
+}
+
+// HDF5's deflate filter: compress2 at the dataset's level (zlib format).
+std::vector<unsigned char> deflated(const std::vector<unsigned char>& in, int level) {
+  uLongf size = compressBound(uLong(in.size()));
+  std::vector<unsigned char> out(size);
+  if (compress2(out.data(), &size, in.data(), uLong(in.size()), level) != Z_OK)
+    throw std::runtime_error("zlib: cannot compress a chunk of rows");
+  out.resize(size);
+  return out;
+}
+
+}  // namespace
+
+void encode_piece(const std::vector<RunRow>& rows, const RowLayout& layout, bool make_chunk, const std::string& file,
+                  unsigned char* buf, EncodedPiece& piece) {
+  const auto& cols = result_columns();
+  bool variable_text = false;
+  std::memset(buf + piece.first * layout.row_size, 0, piece.count * layout.row_size);
+  for (std::size_t r = piece.first; r < piece.first + piece.count; ++r) {
+    unsigned char* base = buf + r * layout.row_size;
+    for (std::size_t i = 0; i < cols.size(); ++i) {
+      CellValue v = cols[i].get(rows[r]);
+      unsigned char* dst = base + layout.offsets[i];
+      if (const double* d = std::get_if<double>(&v)) {
+        std::memcpy(dst, d, 8);
+      } else if (const std::int64_t* n = std::get_if<std::int64_t>(&v)) {
+        std::memcpy(dst, n, 8);
+      } else if (layout.text_sizes[i] == 0) {
+        // "" as a null pointer: HDF5 then stores no heap object, and the
+        // row's reference is zeros, which compress away.
+        std::string& text = std::get<std::string>(v);
+        if (text.empty()) continue;
+        variable_text = true;
+        piece.texts.push_back(std::move(text));
+        const char* p = piece.texts.back().c_str();
+        std::memcpy(dst, &p, sizeof p);
+        piece.text_bytes += piece.texts.back().size() + 32;
+      } else {
+        const std::string& s = std::get<std::string>(v);
+        // Widths are made to fit (the engine's words, text_widths(spec)): a
+        // longer value is refused, never cut.
+        if (s.size() >= layout.text_sizes[i])
+          throw std::logic_error("column '" + cols[i].name + "' of " + file + " holds " +
+                                 std::to_string(layout.text_sizes[i] - 1) + " bytes, but run " +
+                                 std::to_string(rows[r].tuple.run_id) + " has " + std::to_string(s.size()) + ": '" + s +
+                                 "'");
+        std::memcpy(dst, s.data(), s.size());
+      }
+    }
+  }
+  // A string in the global heap has an address only HDF5 can give.
+  if (!make_chunk || variable_text || layout.file_row_size == 0) return;
+  std::vector<unsigned char> raw(piece.count * layout.file_row_size, 0);
+  to_file_layout(buf + piece.first * layout.row_size, piece.count, layout, raw.data());
+  piece.chunk = deflated(shuffled(raw, layout.file_row_size), layout.deflate_level);
+}
+
+}  // namespace chaosweep
