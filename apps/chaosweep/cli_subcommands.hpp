@@ -14,6 +14,7 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action);
 // `chaosweep status` (cli_status.cpp); added by add_slurm_commands.
 void add_status_command(CLI::App& app, std::function<int()>& action);
 void add_log_command(CLI::App& app, std::function<int()>& action);
+void add_export_command(CLI::App& app, std::function<int()>& action);
 void add_bench_command(CLI::App& app, std::function<int()>& action);
 void add_table_command(CLI::App& app, std::function<int()>& action);
 void add_figure_command(CLI::App& app, std::function<int()>& action);

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add_compare_command(app, action);
   add_slurm_commands(app, action);
   add_log_command(app, action);
+  add_export_command(app, action);
   add_bench_command(app, action);
   add_table_command(app, action);
   add_figure_command(app, action);

@@ -145,3 +145,25 @@ def test_the_status_vocabulary_is_the_engines():
     body = source[source.index("const char* to_string(Status v)"):]
     body = body[:body.index("\n}\n")]
     assert tuple(re.findall(r'return "(\w+)";', body)) == STATUSES
+
+
+def test_export_writes_csv_and_json_lines_that_read_back_as_the_runs(tmp_path):
+    _, out = sweep(tmp_path, SPEC)
+    runs = read_runs(out)
+    for name in ("runs.csv", "runs.jsonl"):
+        target = tmp_path / name
+        subprocess.run([BIN, "export", str(out), "-o", str(target)], check=True)
+        back = pd.read_csv(target, keep_default_na=False, na_values=[""]) if name.endswith(".csv") else \
+            pd.read_json(target, lines=True, dtype=False)
+        assert list(back.columns) == list(runs.columns)
+        for col in runs.columns:
+            a, b = runs[col], back[col]
+            if a.dtype == np.float64:
+                assert np.array_equal(a.to_numpy(), b.to_numpy(dtype=np.float64), equal_nan=True), col
+            else:
+                assert a.astype(str).tolist() == b.astype(str).tolist(), col
+    again = subprocess.run([BIN, "export", str(out), "-o", str(tmp_path / "runs.csv")], capture_output=True, text=True)
+    assert again.returncode == 2 and "--force" in again.stderr
+    bad = subprocess.run([BIN, "export", str(out), "-o", str(tmp_path / "runs.txt")], capture_output=True, text=True)
+    assert bad.returncode == 2 and ".csv or .jsonl" in bad.stderr
+    assert not (tmp_path / "runs.txt").exists()
