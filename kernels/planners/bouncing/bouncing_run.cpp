@@ -58,8 +58,11 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
   // otherwise alias p for the compiler and reload and redivide every move.
   const double dt = p.step / p.v;
   // The robot's cell, carried from move to move: mark_segment's own test
-  // (both ends in one cell: mark it) without recomputing the start's cell.
+  // (both ends in one cell) without recomputing the start's cell. That cell
+  // is marked already (at the start or by the move into it) and this run
+  // opens no Eq. 5 window, so marking it again would change nothing.
   int ci = grid.cell_x(x), cj = grid.cell_y(y);
+  std::int64_t steps = 0;  // in a register, not stored through r every move
   while (true) {
     if (grid.visited_cells() >= needed) {
       r.status = Status::ok;
@@ -74,12 +77,13 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
     const double nx = x + step_x, ny = y + step_y;
     if (free_at(env, nx, ny)) {
       const int ni = grid.cell_x(nx), nj = grid.cell_y(ny);
-      if (ni == ci && nj == cj) grid.mark_cell(ci, cj);
-      else grid.mark_segment(x, y, nx, ny);
-      ci = ni, cj = nj;
+      if (ni != ci || nj != cj) {
+        grid.mark_segment(x, y, nx, ny);
+        ci = ni, cj = nj;
+      }
       x = nx, y = ny;
       t += dt;
-      ++r.steps;
+      ++steps;
       bumps_in_a_row = 0;
       if (trace) trace->point({t, x, y, SegmentKind::arnold, 0});
       continue;
@@ -100,6 +104,7 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
     step_x = p.step * std::cos(heading * deg), step_y = p.step * std::sin(heading * deg);
     if (trace) trace->point({t, x, y, SegmentKind::subgoal, int(k + 1)});
   }
+  r.steps = steps;
   r.t_end = t;
   r.final_x = x, r.final_y = y;
 }
