@@ -47,12 +47,14 @@ const MapCase maps[] = {
 // parameters but its map and technique set.
 std::vector<RunTuple> cell_runs(const MapCase& m, const Variant& v, const VariantOptions& o) {
   char head[512];
-  std::snprintf(head, sizeof head,
-                "[fixed]\nsize = %g\nsr = %g\nenv = \"%s\"\ndc = 0.9\nmax_pr = 50\nmax_time = %.17g\nic_jitter = 1e-6\n",
-                m.size, m.sr, m.spec_env, o.max_time);
+  std::snprintf(
+      head, sizeof head,
+      "[fixed]\nsize = %g\nsr = %g\nenv = \"%s\"\ndc = 0.9\nmax_pr = 50\nmax_time = %.17g\nic_jitter = 1e-6\n", m.size,
+      m.sr, m.spec_env, o.max_time);
   const int seeds = (o.runs + 2) / 3;
-  const std::string text = std::string(head) + v.fixed + "[axes]\nseed = { start = 0, stop = " +
-                           std::to_string(seeds - 1) + ", step = 1 }\nds_index = [1, 2, 3]\n";
+  const std::string text = std::string(head) + v.fixed +
+                           "[axes]\nseed = { start = 0, stop = " + std::to_string(seeds - 1) +
+                           ", step = 1 }\nds_index = [1, 2, 3]\n";
   const SweepSpec spec = parse_sweep_spec(text, "bench --variants");
   EnvironmentCache cache;
   std::vector<RunTuple> tuples;

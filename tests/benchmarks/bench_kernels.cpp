@@ -4,13 +4,13 @@
 
 #include <cmath>
 
+#include "engine/spec/environment_loader.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
 #include "kernels/lanes/lane_arrays.hpp"
 #include "kernels/math/sincos.hpp"
 #include "kernels/planners/planner.hpp"
 #include "kernels/systems/arnold_flow.hpp"
-#include "engine/spec/environment_loader.hpp"
 
 using namespace chaosweep;
 
