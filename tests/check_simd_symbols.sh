@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The per-ISA kernel objects (lane_kernel_avx2/avx512) are compiled for newer
+# The per-ISA kernel objects (lane_kernel_avx2/avx512, and the contraction
+# planner's trig3_avx2) are compiled for newer
 # CPUs than the rest. If one of them emitted an inline function that baseline
 # code also uses (a weak symbol of, say, std::vector<double> or sincos<double>),
 # the linker could keep that copy for the whole program and an older CPU would
@@ -9,17 +10,17 @@ set -euo pipefail
 status=0
 checked=0
 for obj in "$@"; do
-  case "$obj" in *lane_kernel_avx*) ;; *) continue ;; esac
+  case "$obj" in *lane_kernel_avx* | *trig3_avx2*) ;; *) continue ;; esac
   checked=$((checked + 1))
   while read -r kind name; do
     case "$name" in
-      *"__vector("*|"chaosweep::integrate_lanes_avx"*) ;;
+      *"__vector("*|"chaosweep::integrate_lanes_avx"*|"chaosweep::sincos4_avx2("*|"chaosweep::wrap_sincos4_avx2("*) ;;
       *) echo "FAIL: $obj defines $kind $name"; status=1 ;;
     esac
   done < <(nm -C --defined-only "$obj" | awk '$2 ~ /^[A-Z]$/ && $2 != "R" { $1 = ""; sub(/^ /, ""); k = $1; $1 = ""; sub(/^ /, ""); print k, $0 }')
 done
-if [[ $checked -ne 2 ]]; then
-  echo "FAIL: expected 2 per-ISA kernel objects, found $checked"
+if [[ $checked -ne 3 ]]; then
+  echo "FAIL: expected 3 per-ISA objects, found $checked"
   exit 1
 fi
 [[ $status -eq 0 ]] && echo "ok: per-ISA kernel objects define only vector-typed symbols"

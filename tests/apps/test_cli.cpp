@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <regex>
 
 #include <sys/wait.h>
@@ -635,6 +636,53 @@ TEST(CliBench, JsonReportsEachWidthTheNaiveRatioAndTheWholeSweep) {
   EXPECT_TRUE(std::isfinite(number("sweep_overhead")));
   EXPECT_NE(r.out.find("\"cpu_best\": \""), std::string::npos);
   EXPECT_EQ(r.out.back() == '\n' ? r.out[r.out.size() - 2] : r.out.back(), '}');
+}
+
+// --variants: every cell (6 technique sets x 50/200 m x SR 1/4 x open/five
+// squares) once, with finite positive ns per step and ratios that are the
+// quotient of the reported ns values. Tiny runs keep it fast; speed itself
+// is for BENCHMARKS.md.
+TEST(CliBench, VariantsReportEveryCellWithConsistentRatios) {
+  const auto r = chaosweep::test::run_chaosweep("bench --variants --json --variant-runs 3 --variant-time 20");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::regex cell(
+      "\\{\"size\": ([0-9]+), \"sr\": ([0-9]+), \"env\": \"([a-z_]+)\", \"variant\": \"([A-Za-z+]+)\", \"runs\": 3, "
+      "\"arnold_steps\": ([0-9]+), \"transit_points\": ([0-9]+), \"seconds\": ([-0-9.e+]+), "
+      "\"ns_per_step\": ([-0-9.e+naif]+), \"ratio\": ([-0-9.e+naif]+)\\}");
+  std::map<std::string, std::pair<double, double>> cells;  // key -> (ns, ratio)
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), cell); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    const std::string key = m[1].str() + "/" + m[2].str() + "/" + m[3].str() + "/" + m[4].str();
+    EXPECT_GT(std::stod(m[5]) + std::stod(m[6]), 0.0) << key;
+    EXPECT_TRUE(cells.emplace(key, std::pair{std::stod(m[8]), std::stod(m[9])}).second) << "twice: " << key;
+  }
+  ASSERT_EQ(cells.size(), 48u) << r.out;
+  for (const char* size : {"50", "200"})
+    for (const char* sr : {"1", "4"}) {
+      const std::string map = std::string(size) + "/" + sr + "/";
+      const auto base = cells.find(map + "open/original");
+      ASSERT_NE(base, cells.end()) << map;
+      for (const char* env : {"open", "five_squares"})
+        for (const char* v : {"original", "IS", "SC", "MZ", "IS+MZ+SC", "logistic"}) {
+          const auto c = cells.find(map + env + "/" + v);
+          ASSERT_NE(c, cells.end()) << map << env << "/" << v;
+          const auto [ns, ratio] = c->second;
+          EXPECT_TRUE(std::isfinite(ns) && ns > 0) << c->first;
+          EXPECT_TRUE(std::isfinite(ratio) && ratio > 0) << c->first;
+          EXPECT_NEAR(ratio, ns / base->second.first, 1e-3 * ratio + 1e-4) << c->first;
+        }
+      EXPECT_NEAR(base->second.second, 1.0, 1e-9);
+    }
+  EXPECT_NE(r.out.find("\"runs_per_cell\": 3"), std::string::npos);
+  EXPECT_NE(r.out.find("\"threads\": 1"), std::string::npos);
+  // The default table names every variant in its header.
+  const auto t = chaosweep::test::run_chaosweep("bench --variants --variant-runs 1 --variant-time 5");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("| map | original | IS | SC | MZ | IS+MZ+SC | logistic |"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("| 200 m SR 4 five_squares | "), std::string::npos) << t.out;
+  const auto bad = chaosweep::test::run_chaosweep("bench --variants --variant-runs 0");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--variant-runs"), std::string::npos) << bad.err;
 }
 
 TEST(CliBench, PipelineMeasuresOneTargetAndRefusesAnUnknownOne) {

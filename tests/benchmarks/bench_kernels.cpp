@@ -142,6 +142,51 @@ void BM_run_setup_200m_sr1(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_run_setup_200m_sr1)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
+// The three other planners on their shipped specs' maps (experiments/seed00x.toml),
+// one whole run each (issue 20: Chebyshev's hypot per move, the bouncing
+// robot's sincos per move, the contraction planner's portable sincos).
+void BM_run_chebyshev(benchmark::State& state) {
+  RunParams p;
+  p.planner = Planner::chebyshev;
+  p.size_x = p.size_y = 10;
+  p.sr = 0.5;
+  p.start_x = 1, p.start_y = 8;
+  p.cheb_k = 6;
+  p.dc = 0.9;
+  time_runs(state, p, load_environment("cheb_case1", 10, 10));
+}
+BENCHMARK(BM_run_chebyshev)->Unit(benchmark::kMillisecond);
+
+void BM_run_bouncing(benchmark::State& state) {
+  RunParams p;
+  p.planner = Planner::bouncing;
+  p.sr = 1;
+  p.step = 0.25;
+  p.max_time = 200000;
+  p.seed = 7;
+  const Environment env = load_environment("seed002_map", 50, 50);
+  p.size_x = env.lx, p.size_y = env.ly;
+  p.start_x = env.start->first, p.start_y = env.start->second;
+  time_runs(state, p, env);
+}
+BENCHMARK(BM_run_bouncing)->Unit(benchmark::kMillisecond);
+
+// Arg: c3_n of one mapped trajectory (seed003.toml's table 3 range).
+void BM_run_contraction_map(benchmark::State& state) {
+  RunParams p;
+  p.planner = Planner::contraction;
+  p.size_x = p.size_y = 20;
+  p.sr = 1;
+  p.A = 1, p.B = 0.5, p.C = 0.5;
+  p.ic_x = 4, p.ic_y = 3.5, p.ic_z = 0;
+  p.start_x = p.start_y = 10;
+  p.c3_mode = ContractionMode::map;
+  p.c3_n = int(state.range(0));
+  Environment env;
+  env.lx = env.ly = 20;
+  time_runs(state, p, env);
+}
+BENCHMARK(BM_run_contraction_map)->Arg(800)->Arg(19200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -51,6 +51,18 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
   if (trace) trace->point({0.0, x, y, SegmentKind::start, 0});
   // A robot boxed in (every heading bumps) would turn for ever: bounded.
   long bumps_in_a_row = 0;
+  // The heading changes only at bumps: its step vector is computed there,
+  // by the same calls on the same angle as before (bit-identical), not per move.
+  double step_x = p.step * std::cos(heading * deg), step_y = p.step * std::sin(heading * deg);
+  // Loop invariants held in locals: the calls below (grid marking) could
+  // otherwise alias p for the compiler and reload and redivide every move.
+  const double dt = p.step / p.v;
+  // The robot's cell, carried from move to move: mark_segment's own test
+  // (both ends in one cell) without recomputing the start's cell. That cell
+  // is marked already (at the start or by the move into it) and this run
+  // opens no Eq. 5 window, so marking it again would change nothing.
+  int ci = grid.cell_x(x), cj = grid.cell_y(y);
+  std::int64_t steps = 0;  // in a register, not stored through r every move
   while (true) {
     if (grid.visited_cells() >= needed) {
       r.status = Status::ok;
@@ -62,12 +74,16 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
       r.message = "budget reached before dc";
       break;
     }
-    const double nx = x + p.step * std::cos(heading * deg), ny = y + p.step * std::sin(heading * deg);
+    const double nx = x + step_x, ny = y + step_y;
     if (free_at(env, nx, ny)) {
-      grid.mark_segment(x, y, nx, ny);
+      const int ni = grid.cell_x(nx), nj = grid.cell_y(ny);
+      if (ni != ci || nj != cj) {
+        grid.mark_segment(x, y, nx, ny);
+        ci = ni, cj = nj;
+      }
       x = nx, y = ny;
-      t += p.step / p.v;
-      ++r.steps;
+      t += dt;
+      ++steps;
       bumps_in_a_row = 0;
       if (trace) trace->point({t, x, y, SegmentKind::arnold, 0});
       continue;
@@ -85,8 +101,10 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
     double turn = pol[k].phi;
     if (uniform01(rng) >= p.bounce_r) turn += (2.0 * uniform01(rng) - 1.0) * p.bounce_eps;
     heading = std::fmod(heading + turn, 360.0);
+    step_x = p.step * std::cos(heading * deg), step_y = p.step * std::sin(heading * deg);
     if (trace) trace->point({t, x, y, SegmentKind::subgoal, int(k + 1)});
   }
+  r.steps = steps;
   r.t_end = t;
   r.final_x = x, r.final_y = y;
 }

@@ -1,12 +1,15 @@
 #include "kernels/planners/contraction/contraction.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
+#include "kernels/planners/contraction/trig3_fast.hpp"
 #include "kernels/systems/arnold_flow.hpp"
 
 // Seed 003 has its own Sampling, Heading, ... : a namespace keeps them apart
@@ -58,25 +61,28 @@ std::vector<Point> seed003_trajectory(const ContractionRobot& r, Point start, in
   out.reserve(std::size_t(n) + 1);
   out.push_back(start);
   const double h = r.h, hv = r.h * r.v;
+  const bool avx2 = trig3_avx2_usable();
+  // t1 = trig3(u) at each step's start, computed with the wrap that ends
+  // the step before (one vector call on AVX2; trig3_fast.hpp).
+  Trig3<double> t1 = trig3_fast(u, avx2);
   for (int i = 0; i < n; ++i) {
-    const Trig3<double> t1 = trig3(u);
     const Vec3<double> k1 = arnold_rhs(t1, k);
     Vec3<double> next;
     if (r.method == Rk2::heun) {
-      const Trig3<double> t2 = trig3(Vec3<double>{u.x + h * k1.x, u.y + h * k1.y, u.z + h * k1.z});
+      const Trig3<double> t2 = trig3_fast(Vec3<double>{u.x + h * k1.x, u.y + h * k1.y, u.z + h * k1.z}, avx2);
       const Vec3<double> k2 = arnold_rhs(t2, k);
       next = {u.x + 0.5 * h * (k1.x + k2.x), u.y + 0.5 * h * (k1.y + k2.y), u.z + 0.5 * h * (k1.z + k2.z)};
       X += 0.5 * hv * (heading_cos(t1, hs) + heading_cos(t2, hs));
       Y += 0.5 * hv * (heading_sin(t1, hs) + heading_sin(t2, hs));
     } else {
       const double hh = 0.5 * h;
-      const Trig3<double> t2 = trig3(Vec3<double>{u.x + hh * k1.x, u.y + hh * k1.y, u.z + hh * k1.z});
+      const Trig3<double> t2 = trig3_fast(Vec3<double>{u.x + hh * k1.x, u.y + hh * k1.y, u.z + hh * k1.z}, avx2);
       const Vec3<double> k2 = arnold_rhs(t2, k);
       next = {u.x + h * k2.x, u.y + h * k2.y, u.z + h * k2.z};
       X += hv * heading_cos(t2, hs);
       Y += hv * heading_sin(t2, hs);
     }
-    u = {wrap_pi(next.x), wrap_pi(next.y), wrap_pi(next.z)};
+    t1 = wrap_trig3_fast(next, u, avx2);
     out.push_back({X, Y});
   }
   return out;
@@ -88,6 +94,57 @@ std::vector<Point> seed003_trajectory(Point start, int n, Heading heading) {
   return seed003_trajectory(r, start, n);
 }
 
+namespace {
+
+// The bounding box Map scales from: of the first `count` points of a path.
+struct Frame {
+  double x0, x1, y0, y1;
+  bool same_as(const Frame& o) const {  // bit for bit (a -0 extreme maps its points apart)
+    return std::bit_cast<std::uint64_t>(x0) == std::bit_cast<std::uint64_t>(o.x0) &&
+           std::bit_cast<std::uint64_t>(x1) == std::bit_cast<std::uint64_t>(o.x1) &&
+           std::bit_cast<std::uint64_t>(y0) == std::bit_cast<std::uint64_t>(o.y0) &&
+           std::bit_cast<std::uint64_t>(y1) == std::bit_cast<std::uint64_t>(o.y1);
+  }
+};
+
+Frame frame_of(const std::vector<Point>& path, std::size_t count) {
+  Frame f{path[0].x, path[0].x, path[0].y, path[0].y};
+  for (std::size_t i = 0; i < count; ++i) {
+    f.x0 = std::min(f.x0, path[i].x);
+    f.x1 = std::max(f.x1, path[i].x);
+    f.y0 = std::min(f.y0, path[i].y);
+    f.y1 = std::max(f.y1, path[i].y);
+  }
+  return f;
+}
+
+// out[i] = Map of path[i] in frame f, for from <= i < to (out holds to points).
+void map_range(const std::vector<Point>& path, std::size_t from, std::size_t to, const Frame& f, const Workplace& wp,
+               std::vector<Point>& out) {
+  const double x0 = f.x0, y0 = f.y0, ex = f.x1 - f.x0, ey = f.y1 - f.y0;
+  if (wp.aspect == MapAspect::per_axis) {
+    // (p - min) / extent * side: the extremes land exactly on 0 and the side.
+    // Indexed stores, so that the compiler keeps x and y in one vector (the
+    // same IEEE operations, two at once).
+    if (ex > 0.0 && ey > 0.0) {
+      for (std::size_t i = from; i < to; ++i) out[i] = {(path[i].x - x0) / ex * wp.w, (path[i].y - y0) / ey * wp.h};
+      return;
+    }
+    for (std::size_t i = from; i < to; ++i)
+      out[i] = {ex > 0.0 ? (path[i].x - x0) / ex * wp.w : 0.5 * wp.w,
+                ey > 0.0 ? (path[i].y - y0) / ey * wp.h : 0.5 * wp.h};
+    return;
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  double s = std::min(ex > 0.0 ? wp.w / ex : inf, ey > 0.0 ? wp.h / ey : inf);
+  if (!std::isfinite(s)) s = 0.0;  // a single point
+  const double ox = 0.5 * (wp.w - ex * s), oy = 0.5 * (wp.h - ey * s);
+  for (std::size_t i = from; i < to; ++i)
+    out[i] = {clamp(ox + (path[i].x - x0) * s, 0.0, wp.w), clamp(oy + (path[i].y - y0) * s, 0.0, wp.h)};
+}
+
+}  // namespace
+
 // "Compress a trajectory ... onto the workplace": the paper's mapped start
 // points fill [0, 20] x [0, 20] on each axis independently (Section 5.1:
 // x'r.0 in [0, 20], y'r.0 in [0, 20]), and the tail of Table 3 (about 10%,
@@ -96,28 +153,8 @@ std::vector<Point> seed003_trajectory(Point start, int n, Heading heading) {
 // gives; uniform scaling would leave a strip. Per axis is the default.
 std::vector<Point> map_to_workplace(const std::vector<Point>& path, const Workplace& wp) {
   if (path.empty()) return {};
-  double x0 = path[0].x, x1 = x0, y0 = path[0].y, y1 = y0;
-  for (const Point& p : path) {
-    x0 = std::min(x0, p.x);
-    x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y);
-    y1 = std::max(y1, p.y);
-  }
-  const double ex = x1 - x0, ey = y1 - y0;
-  std::vector<Point> out;
-  out.reserve(path.size());
-  if (wp.aspect == MapAspect::per_axis) {
-    // (p - min) / extent * side: the extremes land exactly on 0 and the side.
-    for (const Point& p : path)
-      out.push_back({ex > 0.0 ? (p.x - x0) / ex * wp.w : 0.5 * wp.w, ey > 0.0 ? (p.y - y0) / ey * wp.h : 0.5 * wp.h});
-    return out;
-  }
-  const double inf = std::numeric_limits<double>::infinity();
-  double s = std::min(ex > 0.0 ? wp.w / ex : inf, ey > 0.0 ? wp.h / ey : inf);
-  if (!std::isfinite(s)) s = 0.0;  // a single point
-  const double ox = 0.5 * (wp.w - ex * s), oy = 0.5 * (wp.h - ey * s);
-  for (const Point& p : path)
-    out.push_back({clamp(ox + (p.x - x0) * s, 0.0, wp.w), clamp(oy + (p.y - y0) * s, 0.0, wp.h)});
+  std::vector<Point> out(path.size());
+  map_range(path, 0, path.size(), frame_of(path, path.size()), wp, out);
   return out;
 }
 
@@ -165,10 +202,27 @@ CandidateSweep candidate_sweep(const ContractionRobot& robot, Point start, const
   // One trajectory to n_max: each sample is a prefix (the robot is the same).
   const std::vector<Point> full = seed003_trajectory(robot, start, p.n_max);
   CandidateSweep out{start, 0.0, false, {}};
+  // Each sample is coverage_rate(map_to_workplace(prefix)). When a prefix has
+  // the bounding box of the one before, Map puts their common points at the
+  // same places, so its grid is the one before plus the new points' cells
+  // (a union of cells: the order of marking does not change the count).
+  CoverageGrid g = make_grid(wp);
+  std::vector<Point> mapped;
+  Frame frame{};
+  std::size_t marked = 0;  // points of `mapped` valid and marked in g (0: none)
   for (int n = p.n_min; n <= p.n_max; n += p.n_step) {
-    const std::vector<Point> prefix(full.begin(), full.begin() + n + 1);
-    const std::vector<Point> mapped = map_to_workplace(prefix, wp);
-    out.samples.push_back({start, robot.ic, n, mapped[0], coverage_rate(mapped, wp)});
+    const std::size_t count = std::size_t(n) + 1;
+    const Frame f = frame_of(full, count);
+    if (marked == 0 || !f.same_as(frame)) {
+      g = make_grid(wp);
+      marked = 0;
+    }
+    mapped.resize(count);  // n grows: only ever longer
+    map_range(full, marked, count, f, wp, mapped);
+    mark_path(g, mapped, wp.sampling, marked);
+    frame = f;
+    marked = count;
+    out.samples.push_back({start, robot.ic, n, mapped[0], g.coverage()});
   }
   out.coverage_first = out.samples[0].coverage;
   out.kept = out.coverage_first >= p.threshold;
