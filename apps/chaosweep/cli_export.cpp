@@ -70,8 +70,7 @@ int export_command(const ExportFlags& o) {
     if (format.empty()) {
       const std::string ext = std::filesystem::path(o.out).extension().string();
       format = ext == ".jsonl" || ext == ".ndjson" ? "jsonl" : ext == ".csv" ? "csv" : "";
-      if (format.empty())
-        throw ExportError("-o " + o.out + ": give a .csv or .jsonl file, or --format csv|jsonl");
+      if (format.empty()) throw ExportError("-o " + o.out + ": give a .csv or .jsonl file, or --format csv|jsonl");
     }
     check_output_free(o.out, o.force);
     check_result_columns(o.file);  // names a file that is not a result file

@@ -118,8 +118,12 @@ double time_sweep(const SweepSpec& spec, int threads, SimdTarget target) {
   const auto t0 = clock_type::now();
   {
     H5RunWriter writer((dir / "bench.h5").string());
-    run_sweep(spec, ThreadBatchEvaluator(threads, target), SweepOptions{},
-              [&](const std::vector<RunRow>& rows) { writer.append(rows); });
+    const ThreadBatchEvaluator evaluator(threads, target);
+    // As `sweep` does: rows encoded and compressed on the sweep's threads.
+    const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
+      evaluator.parallel(n, body);
+    };
+    run_sweep(spec, evaluator, SweepOptions{}, [&](const std::vector<RunRow>& rows) { writer.append(rows, parallel); });
     writer.finish();
   }
   const double s = seconds_since(t0);
