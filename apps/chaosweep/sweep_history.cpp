@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -61,9 +62,12 @@ void append_line(const std::vector<std::string>& fields, bool quiet) {
   line += "\n";
   std::error_code ec;
   fs::create_directories(fs::path(path).parent_path(), ec);
+  // Past a file-size limit (ulimit -f) the write must fail, not kill the sweep.
+  const auto old_xfsz = std::signal(SIGXFSZ, SIG_IGN);
   const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
   const bool ok = fd >= 0 && ::write(fd, line.data(), line.size()) == ssize_t(line.size());
   if (fd >= 0) ::close(fd);
+  std::signal(SIGXFSZ, old_xfsz);
   if (!ok && !quiet)
     std::cerr << "chaosweep sweep: warning: cannot record the sweep in " << path << " (chaosweep log)\n";
 }
