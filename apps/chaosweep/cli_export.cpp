@@ -35,30 +35,45 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
+// One column of the file, its values found once rather than per row.
+struct ExportColumn {
+  std::string key;  // the column's name as written before each value (JSON) or in the header (CSV)
+  const std::vector<std::int64_t>* i64 = nullptr;
+  const std::vector<double>* f64 = nullptr;
+  const std::vector<std::string>* text = nullptr;
+};
+
+std::string value_text(const ExportColumn& c, std::size_t r, bool csv) {
+  if (c.i64) return std::to_string((*c.i64)[r]);
+  if (c.f64) {
+    const double x = (*c.f64)[r];
+    if (std::isfinite(x)) return format_number(x);
+    if (std::isnan(x)) return csv ? "" : "null";
+    const std::string inf = x > 0 ? "inf" : "-inf";
+    return csv ? inf : "\"" + inf + "\"";  // JSON has no infinity
+  }
+  return csv ? csv_field((*c.text)[r]) : "\"" + json_escape((*c.text)[r]) + "\"";
+}
+
 void write_rows(std::ostream& os, const std::string& file, bool csv) {
-  const auto types = column_types(file);
   const TypedColumns cols = read_typed_columns(file);
+  std::vector<ExportColumn> columns;
+  for (const auto& [name, type] : column_types(file)) {
+    ExportColumn c{csv ? csv_field(name) : "\"" + json_escape(name) + "\": "};
+    if (const auto i = cols.i64.find(name); i != cols.i64.end()) c.i64 = &i->second;
+    else if (const auto f = cols.f64.find(name); f != cols.f64.end()) c.f64 = &f->second;
+    else c.text = &cols.text.at(name);
+    columns.push_back(std::move(c));
+  }
   if (csv) {
-    for (std::size_t c = 0; c < types.size(); ++c) os << (c ? "," : "") << csv_field(types[c].first);
+    for (std::size_t c = 0; c < columns.size(); ++c) os << (c ? "," : "") << columns[c].key;
     os << "\n";
   }
   for (std::size_t r = 0; r < cols.rows; ++r) {
     if (!csv) os << "{";
-    for (std::size_t c = 0; c < types.size(); ++c) {
-      const std::string& name = types[c].first;
-      std::string v;
-      if (const auto i = cols.i64.find(name); i != cols.i64.end()) {
-        v = std::to_string(i->second[r]);
-      } else if (const auto f = cols.f64.find(name); f != cols.f64.end()) {
-        const double x = f->second[r];
-        v = std::isfinite(x) ? format_number(x) : std::isnan(x) ? (csv ? "" : "null") : (x > 0 ? "inf" : "-inf");
-        if (!csv && std::isinf(x)) v = "\"" + v + "\"";  // JSON has no infinity
-      } else {
-        const std::string& t = cols.text.at(name)[r];
-        v = csv ? csv_field(t) : "\"" + json_escape(t) + "\"";
-      }
-      if (csv) os << (c ? "," : "") << v;
-      else os << (c ? ", " : "") << "\"" << json_escape(name) << "\": " << v;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (csv) os << (c ? "," : "") << value_text(columns[c], r, true);
+      else os << (c ? ", " : "") << columns[c].key << value_text(columns[c], r, false);
     }
     os << (csv ? "\n" : "}\n");
   }

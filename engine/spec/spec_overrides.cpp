@@ -168,7 +168,7 @@ std::string apply_overrides(const std::string& text, const std::vector<SpecOverr
   std::set<std::string> keys;
   for (const SpecOverride& o : overrides) {
     const std::size_t first = edits.size();
-    const std::string bare = o.key.substr(o.key.find('.') == std::string::npos ? 0 : o.key.find('.') + 1);
+    const std::string bare = o.key.substr(o.key.find('.') + 1);  // npos + 1 == 0: the whole key
     if (!keys.insert(bare).second) fail(o, "'" + bare + "' is given twice");
     plan_edit(text, root, o, edits, appended);
     for (std::size_t k = first; k < edits.size(); ++k) edits[k].flag = keys.size();

@@ -94,21 +94,37 @@ def _frame(rows, names, string_fields):
                                      dtype=object)
         else:
             columns[name] = col
-    frame = pd.DataFrame(columns, columns=names)
-    if "status" in frame:
-        frame["status"] = pd.Categorical(frame["status"], categories=STATUSES)
-    return frame
+    return pd.DataFrame(columns, columns=names)
 
 
-def read_provenance(path):
+class _Opened:
+    """The file checked, under the shared lock, with no pending journal, open in h5py."""
+
+    def __init__(self, path, lock_timeout):
+        self.path = Path(path)
+        _check_readable(self.path)
+        self.lock = _SharedLock(self.path, timeout=lock_timeout)
+
+    def __enter__(self):
+        self.lock.__enter__()
+        try:
+            _check_no_pending_journal(self.path)
+            self.file = h5py.File(self.path, "r")
+        except BaseException:
+            self.lock.__exit__()
+            raise
+        return self.file
+
+    def __exit__(self, *exc):
+        self.file.close()
+        self.lock.__exit__()
+
+
+def read_provenance(path, lock_timeout=10.0):
     """The file's root attributes (spec, spec_hash, shard, runs_total, git_dirty, ...)
     as Python values: text as str, counts as int, flags as bool."""
-    path = Path(path)
-    _check_readable(path)
-    with _SharedLock(path, timeout=10.0):
-        _check_no_pending_journal(path)
-        with h5py.File(path, "r") as f:
-            return _provenance(f, path)
+    with _Opened(path, lock_timeout) as f:
+        return _provenance(f, Path(path))
 
 
 def _provenance(f, path):
@@ -126,12 +142,8 @@ def read_runs(path, where=None, columns=None, lock_timeout=10.0):
     chunk by chunk, so a filtered read of a large file stays small.
     columns: the columns to keep (default: all).
     The provenance is in ``df.attrs`` (see read_provenance)."""
-    path = Path(path)
-    _check_readable(path)
-    with _SharedLock(path, timeout=lock_timeout):
-        _check_no_pending_journal(path)
-        with h5py.File(path, "r") as f:
-            return _read_rows(f, path, where, columns)
+    with _Opened(path, lock_timeout) as f:
+        return _read_rows(f, Path(path), where, columns)
 
 
 def _read_rows(f, path, where, columns):
@@ -155,7 +167,7 @@ def _read_rows(f, path, where, columns):
             chunk = chunk[np.asarray(mask, dtype=bool)]
         parts.append(chunk[names])
     frame = pd.concat(parts, ignore_index=True)
-    if "status" in frame:  # concat of categoricals keeps the category only when all agree
+    if "status" in frame:
         frame["status"] = pd.Categorical(frame["status"], categories=STATUSES)
     frame.attrs = _provenance(f, path)
     return frame
