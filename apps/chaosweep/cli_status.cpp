@@ -100,7 +100,9 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
     // is a task not started (or requeued) yet.
     const bool pending = !w.lock.held && slurm_state_pending(w.task->state);
     (pending ? c.pending : c.running).push_back(k);
-    if (!pending || has_part) (pending ? c.pending_detail : c.running_detail) += name + (rows.empty() ? "" : rows + ", ") + live_words(w, k) + "\n";
+    if (!pending || has_part)
+      (pending ? c.pending_detail : c.running_detail) +=
+          name + (rows.empty() ? "" : rows + ", ") + live_words(w, k) + "\n";
   } else if (has_part) {
     c.partial.push_back(k);
     c.detail += name + rows + "; " + dead_reason(w, k) + "\n";

@@ -124,10 +124,8 @@ SlurmReport query_slurm(const std::vector<std::string>& array_jobs, int tasks) {
   SlurmReport rep;
   std::vector<std::string> ids;
   for (const std::string& id : array_jobs) {
-    if (digits(id))
-      ids.push_back(id);
-    else
-      rep.notes.push_back("job id '" + printable(id) + "' is not a number: not asked");
+    if (digits(id)) ids.push_back(id);
+    else rep.notes.push_back("job id '" + printable(id) + "' is not a number: not asked");
   }
   if (ids.empty()) return rep;
   const ArgvResult q = run_argv({"squeue", "-h", "-r", "-j", joined(ids), "-o", "%F|%K|%T"});
@@ -135,8 +133,7 @@ SlurmReport query_slurm(const std::vector<std::string>& array_jobs, int tasks) {
     rep.notes.push_back("squeue is not on PATH: SLURM not asked, states from the shard locks only");
     return rep;
   }
-  if (q.exit_code == 0 || says_invalid_job(q))
-    parse_squeue(q.out, tasks, rep.tasks);
+  if (q.exit_code == 0 || says_invalid_job(q)) parse_squeue(q.out, tasks, rep.tasks);
   else
     rep.notes.push_back("squeue failed (" + first_line(q.timed_out ? "timed out" : q.err) +
                         "): live tasks known from the shard locks only");

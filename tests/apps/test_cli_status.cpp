@@ -124,8 +124,10 @@ TEST(CliStatusSlurm, WithoutAccountingStorageEndedTasksComeFromScontrol) {
          "JobId=500 ArrayJobId=500 ArrayTaskId=4-5%2 JobState=PENDING Reason=JobArrayTaskLimit ExitCode=0:0\n");
   const auto r = c.status();
   EXPECT_EQ(count(r.out, "note: "), 1) << r.out;
-  EXPECT_TRUE(has(r.out, "note: sacct failed (sacct: error: Slurm accounting storage is disabled): ended tasks "
-                         "from scontrol show job")) << r.out;
+  EXPECT_TRUE(has(r.out,
+                  "note: sacct failed (sacct: error: Slurm accounting storage is disabled): ended tasks "
+                  "from scontrol show job"))
+      << r.out;
   EXPECT_TRUE(has(r.out, "  shard 3: 4 of 10 runs; job 500_3 FAILED (exit 2:0), no lock\n")) << r.out;
   EXPECT_TRUE(has(r.out, "pending  2: 4,5\n  shard 5: 4 of 10 runs, job 500_5 PENDING\n")) << r.out;
   EXPECT_TRUE(has(r.out, "resubmit: --array=1,2,3\n")) << r.out;
@@ -173,8 +175,8 @@ TEST(CliStatusSlurm, AHeldLockIsALiveWriterWithoutSlurm) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(count(r.out, "note: "), 1) << r.out;
   EXPECT_TRUE(has(r.out, "note: no SLURM job recorded in ")) << r.out;
-  EXPECT_TRUE(has(r.out, "running  1: 1\n  shard 1: 4 of 10 runs, written by process " + std::to_string(getpid()) +
-                             " on "))
+  EXPECT_TRUE(
+      has(r.out, "running  1: 1\n  shard 1: 4 of 10 runs, written by process " + std::to_string(getpid()) + " on "))
       << r.out;
   EXPECT_TRUE(has(r.out, "partial  2: 3,5\n")) << r.out;
   EXPECT_TRUE(has(r.out, "resubmit: --array=2,3,4,5\n")) << r.out;
@@ -193,9 +195,10 @@ TEST(CliStatusSlurm, EveryShardLiveLeavesNothingToResubmit) {
 
 TEST(SlurmQuery, ParsersReadRangesThrottlesAndSkipWhatTheyCannotRead) {
   chaosweep::TaskStates t;
-  chaosweep::parse_sacct("7_[2-4,9%2]|PENDING|0:0\n7_1|OUT_OF_MEMORY|0:125\n7|COMPLETED|0:0\n7_x|FAILED|1:0\n"
-                         "8_1|lowercase|1:0\n8_0|FAILED|$(id)\n",
-                         6, t);
+  chaosweep::parse_sacct(
+      "7_[2-4,9%2]|PENDING|0:0\n7_1|OUT_OF_MEMORY|0:125\n7|COMPLETED|0:0\n7_x|FAILED|1:0\n"
+      "8_1|lowercase|1:0\n8_0|FAILED|$(id)\n",
+      6, t);
   ASSERT_EQ(t.size(), 5u);
   EXPECT_EQ(t.at(2).state, "PENDING");
   EXPECT_EQ(t.at(4).job, 7);
@@ -231,8 +234,8 @@ TEST(CliSlurm, SubmitRecordsTheJobIdsAndTheTasksRecordTheirOwn) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(has(r.out, "submitted array job 700 and merge job 701 (recorded in " + run + "/jobs.txt)")) << r.out;
   EXPECT_EQ(read_file(run + "/jobs.txt"), "array 700\nmerge 701\n");
-  EXPECT_EQ(read_file(args), "--parsable\n" + run + "/sweep.sbatch\n--parsable\n--dependency=afterok:700\n" + run +
-                                 "/merge.sbatch\n");
+  EXPECT_EQ(read_file(args),
+            "--parsable\n" + run + "/sweep.sbatch\n--parsable\n--dependency=afterok:700\n" + run + "/merge.sbatch\n");
   // No sbatch on PATH: the scripts stay, the error says so (exit 3).
   const auto none = run_chaosweep("slurm " + c.tmp.file("s.toml") + " --tasks 3 --force -o " + run + " --submit",
                                   "env PATH=" + shell_quote(c.tmp.file("nothing")));

@@ -1,10 +1,10 @@
 // Engine: probing an output's lock (`chaosweep status`) sees a live holder,
 // not a lock file left by a killed one nor a FIFO, never waits, and a writer
 // starting during a probe is not refused.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/file.h>
 #include <sys/stat.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <chrono>
