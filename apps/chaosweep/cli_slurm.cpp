@@ -182,7 +182,13 @@ std::string sbatch(const std::vector<std::string>& args, const std::string& what
 void submit_jobs(const fs::path& dir) {
   const std::string job = sbatch({(dir / "sweep.sbatch").string()}, "array");
   record_submitted_job(dir, "array", job);
-  const std::string merge = sbatch({"--dependency=afterok:" + job, (dir / "merge.sbatch").string()}, "merge");
+  std::string merge;
+  try {
+    merge = sbatch({"--dependency=afterok:" + job, (dir / "merge.sbatch").string()}, "merge");
+  } catch (const std::exception& e) {  // the array runs: say so, so it is not submitted twice
+    throw std::runtime_error(std::string(e.what()) + " (array job " + job + " was submitted; submit " +
+                             (dir / "merge.sbatch").string() + " by hand)");
+  }
   record_submitted_job(dir, "merge", merge);
   std::cout << "submitted array job " << job << " and merge job " << merge << " (recorded in "
             << (dir / "jobs.txt").string() << ")\n";

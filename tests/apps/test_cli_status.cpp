@@ -241,6 +241,19 @@ TEST(CliSlurm, SubmitRecordsTheJobIdsAndTheTasksRecordTheirOwn) {
                                   "env PATH=" + shell_quote(c.tmp.file("nothing")));
   EXPECT_EQ(none.exit_code, 3);
   EXPECT_TRUE(has(none.err, "sbatch is not on PATH")) << none.err;
+  // The merge refused after the array went in: exit 3, the array named, its id recorded.
+  write_file(c.bin + "/sbatch",
+             "#!/bin/sh\ncase \"$2\" in --dependency=*) printf 'sbatch: error: Invalid dependency\\n' "
+             ">&2; exit 1;; esac\nprintf '800\\n'\n");
+  const auto half = run_chaosweep("slurm " + c.tmp.file("s.toml") + " --tasks 3 --force -o " + run + " --submit",
+                                  "env PATH=" + shell_quote(c.bin));
+  EXPECT_EQ(half.exit_code, 3);
+  EXPECT_TRUE(has(half.err,
+                  "sbatch failed for the merge job: sbatch: error: Invalid dependency (array job 800 was "
+                  "submitted; submit " +
+                      run + "/merge.sbatch by hand)"))
+      << half.err;
+  EXPECT_EQ(read_file(run + "/jobs.txt"), "array 700\nmerge 701\narray 800\n");
   // Task 1's script, run as SLURM would under array job 702, records 702.
   const std::string cmd = "cd " + shell_quote(c.tmp.path().string()) +
                           " && env SLURM_ARRAY_JOB_ID=702 SLURM_ARRAY_TASK_ID=1 SLURM_CPUS_PER_TASK=1 bash " +
@@ -250,6 +263,6 @@ TEST(CliSlurm, SubmitRecordsTheJobIdsAndTheTasksRecordTheirOwn) {
   c.fake("squeue", "");
   c.fake("sacct", "");
   const auto st = run_chaosweep("status " + run, "env PATH=" + shell_quote(c.bin));
-  EXPECT_TRUE(has(st.out, "SLURM array jobs: 700 702\n")) << st.out;
+  EXPECT_TRUE(has(st.out, "SLURM array jobs: 700 800 702\n")) << st.out;
   EXPECT_TRUE(has(st.out, "finished 1: 1\n")) << st.out;
 }
