@@ -42,18 +42,10 @@ struct FastPathInputs {
 template <class V>
 inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
   const V fast = lane_load<V>(a.fast + o);
-  return {lane_load<V>(a.lo_x + o),
-          lane_load<V>(a.hi_x + o),
-          lane_load<V>(a.lo_y + o),
-          lane_load<V>(a.hi_y + o),
-          lane_load<V>(a.fh + o),
-          lane_load<V>(a.inv_cell + o),
-          lane_load<V>(a.max_i + o),
-          lane_load<V>(a.max_j + o),
-          lane_load<V>(a.budget + o),
-          lane_load<V>(a.stuck_time + o),
-          lane_load<V>(a.niter + o),
-          fast >= lane::splat<V>(1.0),
+  return {lane_load<V>(a.lo_x + o),       lane_load<V>(a.hi_x + o),  lane_load<V>(a.lo_y + o),
+          lane_load<V>(a.hi_y + o),       lane_load<V>(a.fh + o),    lane_load<V>(a.inv_cell + o),
+          lane_load<V>(a.max_i + o),      lane_load<V>(a.max_j + o), lane_load<V>(a.budget + o),
+          lane_load<V>(a.stuck_time + o), lane_load<V>(a.niter + o), fast >= lane::splat<V>(1.0),
           fast == lane::splat<V>(2.0)};
 }
 
