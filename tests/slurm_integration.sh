@@ -5,7 +5,13 @@
 # time, memory and job name given), checks the
 # merged file equals a single-machine run, deletes one task's output, checks
 # `chaosweep status` names it, resubmits just that task and checks the set is
-# complete again. Stops the daemons it started, by pid.
+# complete again. Then a slow 3-task array, 2 at a time: while two tasks run,
+# status lists them as running and the third as pending and resubmits
+# nothing; one task's process is killed (kill -9) and status names its shard
+# with the state SLURM gives it (from scontrol: this SLURM has no accounting
+# storage), the others still live; the array is cancelled and status names
+# them all. Stops the daemons it started,
+# by pid.
 # Usage: slurm_integration.sh CHAOSWEEP_BIN.  Exit 77 (skip) only where this
 # machine cannot run SLURM (not root, packages missing, daemons do not start).
 set -u
@@ -13,7 +19,7 @@ BIN=$1
 skip() { echo "SKIP: $*"; exit 77; }
 fail() { echo "FAIL: $*"; exit 1; }
 [[ $(id -u) -eq 0 ]] || skip "slurmctld/slurmd need root here"
-for c in munged munge unmunge slurmctld slurmd sbatch squeue sinfo; do
+for c in munged munge unmunge slurmctld slurmd sbatch squeue sinfo scontrol scancel; do
   command -v "$c" >/dev/null || skip "$c is not installed (Debian: slurm-wlm munge; ./quickstart test installs them)"
 done
 
@@ -111,7 +117,7 @@ RUN=$BASE/work
 out=$("$BIN" slurm "$BASE/spec.toml" --tasks 4 -o "$RUN" --partition debug --time 0-0:10 --mem 100M \
   --job-name cw-integration --submit) || fail "chaosweep slurm --submit: $out"
 echo "$out"
-read -r array_job merge_job < <(echo "$out" | sed -n 's/^submitted array job \([0-9]*\) and merge job \([0-9]*\)$/\1 \2/p')
+read -r array_job merge_job < <(echo "$out" | sed -n 's/^submitted array job \([0-9]*\) and merge job \([0-9]*\) .*/\1 \2/p')
 [[ -n ${array_job:-} && -n ${merge_job:-} ]] || fail "no job ids in: $out"
 wait_jobs "$array_job" "$merge_job"
 [[ -f $RUN/results.h5 ]] || { cat "$RUN"/logs/*; fail "the merge job wrote no results.h5"; }
@@ -131,4 +137,59 @@ wait_jobs "${job%%;*}"
 "$BIN" status "$RUN" || fail "status after the resubmission"
 "$BIN" merge --force -o "$RUN/results.h5" "$RUN"/shard_*.h5 >/dev/null || fail "merge after the resubmission"
 "$BIN" compare "$RUN/results.h5" "$BASE/single.h5" >/dev/null || fail "results differ after the resubmission"
-echo "1 passed, 0 failed: SLURM array, merge, status and resubmission on localhost"
+grep -q "^array $array_job$" "$RUN/jobs.txt" || fail "jobs.txt does not record array job $array_job"
+
+# Live tasks, a pending one and a killed one. Runs to full coverage of a
+# large map: each takes seconds, so the tasks run while status looks (they
+# are cancelled). Two at once need two CPUs.
+if [[ $(nproc) -lt 2 ]]; then
+  echo "1 passed, 0 failed: SLURM array, merge, status and resubmission on localhost (one CPU: live tasks not tried)"
+  exit 0
+fi
+A=$(LC_ALL=C seq -s ', ' 0.400 0.002 0.478)  # 40 values: 40 runs a task, more than the test waits for
+cat > "$BASE/slow.toml" <<SPEC
+[fixed]
+size = 300
+sr = 1
+dc = 1.0
+max_time = 1000000000
+[axes]
+A = [$A]
+B = [0.2]
+ds_index = [1, 2, 3]
+SPEC
+SLOW=$BASE/slow
+out=$("$BIN" slurm "$BASE/slow.toml" --tasks 3 --concurrency 2 --cpus 1 -o "$SLOW" --submit) || fail "slurm --submit (slow): $out"
+read -r slow_job _ < <(echo "$out" | sed -n 's/^submitted array job \([0-9]*\) and merge job \([0-9]*\) .*/\1 \2/p')
+[[ -n ${slow_job:-} ]] || fail "no job id in: $out"
+both_locked() { [[ -s $SLOW/shard_0.h5.lock && -s $SLOW/shard_1.h5.lock ]]; }
+wait_for 120 both_locked || { squeue; cat "$SLOW"/logs/*; fail "the slow tasks did not start"; }
+status=$("$BIN" status "$SLOW"); rc=$?
+echo "$status"
+[[ $rc -eq 1 ]] || fail "status should exit 1 while tasks run"
+grep -q "^running  2: 0,1$" <<<"$status" || fail "status does not list both live tasks as running"
+grep -q "^pending  1: 2$" <<<"$status" || fail "status does not list the throttled task as pending"
+grep -q "^nothing to resubmit" <<<"$status" || fail "status would resubmit a live task"
+grep -q "^note: sacct failed" <<<"$status" || fail "status does not say sacct has no accounting here"
+
+pid=$(sed -n 's/^process \([0-9]*\) on .*/\1/p' "$SLOW/shard_1.h5.lock")
+[[ -n $pid ]] || fail "no pid in $SLOW/shard_1.h5.lock"
+kill -9 "$pid"
+task1_ended() { ! squeue -h -r -j "$slow_job" -o %K 2>/dev/null | grep -qx 1; }
+wait_for 60 task1_ended || fail "task 1 still in squeue after kill -9"
+status=$("$BIN" status "$SLOW"); rc=$?
+echo "$status"
+[[ $rc -eq 1 ]] || fail "status should exit 1 with a task killed"
+grep -Eq "^running  [12]: 0(,2)?$" <<<"$status" || fail "status does not keep task 0 as running"
+grep -Eq "^(running  2: 0,2|pending  1: 2)$" <<<"$status" || fail "status does not keep task 2 live"
+grep -Eq "^  shard 1: .*job ${slow_job}_1 [A-Z_]+ \(exit [0-9]+:[0-9]+\), no lock$" <<<"$status" ||
+  fail "status does not name the killed task's state and exit code"
+grep -q -- "--array=1$" <<<"$status" || fail "status does not print --array=1 for the killed task"
+
+scancel "$slow_job" || fail "scancel"
+wait_jobs "$slow_job"
+status=$("$BIN" status "$SLOW")
+echo "$status"
+grep -q "^  shard 0: .*job ${slow_job}_0 CANCELLED" <<<"$status" || fail "status does not name the cancelled task"
+grep -q -- "--array=0,1,2$" <<<"$status" || fail "status does not print --array=0,1,2 after the cancel"
+echo "1 passed, 0 failed: SLURM array, merge, status (live, killed, cancelled tasks) and resubmission on localhost"

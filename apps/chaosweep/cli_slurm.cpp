@@ -1,7 +1,5 @@
 // `chaosweep slurm`: job scripts for a SLURM array, optionally submitted
 // (`chaosweep status DIR`, which reads what it wrote, is cli_status.cpp).
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -10,6 +8,7 @@
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
+#include "apps/chaosweep/run_argv.hpp"
 #include "apps/chaosweep/slurm_values.hpp"
 #include "engine/run/sweep_runner.hpp"
 #include "engine/spec/embedded_files.hpp"
@@ -43,17 +42,6 @@ std::string self_path() {
   std::error_code ec;
   const fs::path p = fs::read_symlink("/proc/self/exe", ec);
   return ec ? "chaosweep" : p.string();
-}
-
-// Runs a command, returning its stdout and exit status.
-std::pair<int, std::string> capture(const std::string& cmd) {
-  std::string out;
-  FILE* f = popen(cmd.c_str(), "r");
-  if (!f) return {-1, out};
-  char buf[256];
-  while (std::fgets(buf, sizeof buf, f)) out += buf;
-  const int rc = pclose(f);
-  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, out};
 }
 
 // The job id `sbatch --parsable` printed ("ID" or "ID;CLUSTER"); it goes into
@@ -176,15 +164,34 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
   return array;
 }
 
-// Submits the array, then the merge job that waits for it (afterok).
+// Runs sbatch by argv (no shell reads the paths) and returns the job id it
+// printed; `what` names the job in errors.
+std::string sbatch(const std::vector<std::string>& args, const std::string& what) {
+  std::vector<std::string> argv{"sbatch", "--parsable"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const ArgvResult r = run_argv(argv, 300);
+  if (!r.started) throw std::runtime_error("sbatch is not on PATH: the scripts are written, submit them by hand");
+  if (r.exit_code != 0)
+    throw std::runtime_error("sbatch failed for the " + what + " job" +
+                             (r.err.empty() ? std::string() : ": " + printable(r.err.substr(0, r.err.find('\n')))));
+  return job_id(r.out);
+}
+
+// Submits the array, then the merge job that waits for it (afterok), and
+// records both ids in DIR/jobs.txt for `chaosweep status`.
 void submit_jobs(const fs::path& dir) {
-  const auto [rc, id] = capture("sbatch --parsable " + shell_quote((dir / "sweep.sbatch").string()));
-  if (rc != 0) throw std::runtime_error("sbatch failed for the array job");
-  const std::string job = job_id(id);
-  const auto [rc2, id2] =
-      capture("sbatch --parsable --dependency=afterok:" + job + " " + shell_quote((dir / "merge.sbatch").string()));
-  if (rc2 != 0) throw std::runtime_error("sbatch failed for the merge job");
-  std::cout << "submitted array job " << job << " and merge job " << job_id(id2) << "\n";
+  const std::string job = sbatch({(dir / "sweep.sbatch").string()}, "array");
+  record_submitted_job(dir, "array", job);
+  std::string merge;
+  try {
+    merge = sbatch({"--dependency=afterok:" + job, (dir / "merge.sbatch").string()}, "merge");
+  } catch (const std::exception& e) {  // the array runs: say so, so it is not submitted twice
+    throw std::runtime_error(std::string(e.what()) + " (array job " + job + " was submitted; submit " +
+                             (dir / "merge.sbatch").string() + " by hand)");
+  }
+  record_submitted_job(dir, "merge", merge);
+  std::cout << "submitted array job " << job << " and merge job " << merge << " (recorded in "
+            << (dir / "jobs.txt").string() << ")\n";
 }
 
 int run_slurm(const SlurmOptions& o) {
@@ -216,7 +223,8 @@ void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
       "Writes DIR/sweep.sbatch (one shard per array task, --array=0-(N-1)[%M], logs in DIR/logs),\n"
       "DIR/merge.sbatch (merges DIR/shard_*.h5 into DIR/results.h5) and DIR/cluster.toml (for\n"
       "`chaosweep status` and `merge --slurm-dir`). With --submit, calls sbatch for both, the merge\n"
-      "job with --dependency=afterok on the array. Every value that goes into a script is checked\n"
+      "job with --dependency=afterok on the array (sbatch run without a shell), and records both job\n"
+      "ids in DIR/jobs.txt for `chaosweep status`. Every value that goes into a script is checked\n"
       "against the form SLURM accepts for it (exit 2 otherwise); paths are shell-quoted. Example:\n"
       "  chaosweep slurm experiments/fig6.toml --tasks 16 --concurrency 8 -o runs/fig6 --submit");
   auto o = std::make_shared<SlurmOptions>();

@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
+#include <thread>
 
 namespace chaosweep {
 
@@ -21,6 +23,8 @@ std::string read_holder(int fd) {
   while (!s.empty() && (s.back() == '\n' || s.back() == '\0')) s.pop_back();
   return s.empty() ? "another process" : s;
 }
+
+constexpr int probe_retries = 10;  // 20 ms apart
 
 std::string host() {
   char name[256] = {};
@@ -38,7 +42,15 @@ OutputLock::OutputLock(const std::string& output) : path_(output + ".lock") {
   for (;;) {
     fd_ = open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno));
-    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    // A `chaosweep status` probe holds the lock for microseconds: retry a
+    // few times before calling the holder another writer.
+    int rc = 0;
+    for (int tries = 1;; ++tries) {
+      rc = flock(fd_, LOCK_EX | LOCK_NB);
+      if (rc == 0 || errno != EWOULDBLOCK || tries >= probe_retries) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    if (rc != 0) {
       const int err = errno;
       const std::string holder = read_holder(fd_);
       close(fd_);
@@ -67,6 +79,25 @@ OutputLock::~OutputLock() {
   if (fd_ < 0) return;
   unlink(path_.c_str());  // while still locked, so nobody locks the old file after us
   close(fd_);
+}
+
+LockProbe probe_output_lock(const std::string& output) {
+  const std::string path = output + ".lock";
+  // O_NONBLOCK: a FIFO in the lock's place must not hang the open.
+  const int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) return {};  // no lock file: nobody writes (a holder keeps its file)
+  LockProbe p;
+  struct stat st {};
+  if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+    if (flock(fd, LOCK_SH | LOCK_NB) == 0) {
+      flock(fd, LOCK_UN);
+    } else if (errno == EWOULDBLOCK) {
+      p.held = true;
+      p.holder = read_holder(fd);
+    }
+  }
+  close(fd);
+  return p;
 }
 
 }  // namespace chaosweep

@@ -32,4 +32,16 @@ class OutputLock {
   int fd_ = -1;
 };
 
+// Whether a live process writes `output` (holds `output` + ".lock"), asked
+// without waiting and without creating anything: `chaosweep status` on a
+// shard. A file-only probe: the lock file is opened read-only and
+// non-blocking, and a free lock is taken shared for an instant and dropped
+// (the OutputLock constructor retries briefly, so a sweep starting in that
+// instant is not refused).
+struct LockProbe {
+  bool held = false;
+  std::string holder;  // "process PID on HOST" while held
+};
+LockProbe probe_output_lock(const std::string& output);
+
 }  // namespace chaosweep

@@ -1,5 +1,6 @@
 #include "engine/store/slurm_dir.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -45,6 +46,35 @@ std::vector<std::string> existing_shard_files(const fs::path& dir) {
   for (int k = 0; k < plan.tasks; ++k)
     if (const fs::path f = shard_file(dir, k); fs::exists(f)) files.push_back(f.string());
   return files;
+}
+
+void record_submitted_job(const fs::path& dir, const std::string& kind, const std::string& id) {
+  std::ofstream out(dir / "jobs.txt", std::ios::app);
+  out << kind << " " << id << "\n";
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + (dir / "jobs.txt").string());
+}
+
+std::vector<std::string> recorded_array_jobs(const fs::path& dir, int tasks) {
+  std::vector<std::string> ids;
+  const auto add = [&ids](const std::string& id) {
+    if (!id.empty() && std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  };
+  // Regular files only: a FIFO in a file's place must not hang status.
+  std::error_code ec;
+  const auto regular = [&ec](const fs::path& p) { return fs::is_regular_file(fs::symlink_status(p, ec)); };
+  std::ifstream jobs;
+  if (regular(dir / "jobs.txt")) jobs.open(dir / "jobs.txt");
+  for (std::string kind, id; jobs >> kind >> id;)
+    if (kind == "array") add(id);
+  for (int k = 0; k < tasks; ++k) {
+    const fs::path file = dir / "logs" / ("task_" + std::to_string(k) + ".job");
+    if (!regular(file)) continue;
+    std::ifstream task(file);
+    std::string id;
+    if (task >> id) add(id);
+  }
+  return ids;
 }
 
 }  // namespace chaosweep

@@ -26,4 +26,13 @@ std::filesystem::path shard_file(const std::filesystem::path& dir, int k);
 // from here rather than from a command line, which 1e5 paths would overflow).
 std::vector<std::string> existing_shard_files(const std::filesystem::path& dir);
 
+// DIR/jobs.txt: a line "array ID" / "merge ID" per job `chaosweep slurm
+// --submit` submitted (appended: a --force resubmission adds its own), and
+// DIR/logs/task_K.job: the array job id task K last ran under (its script
+// writes it, so a resubmission with plain sbatch is known too).
+void record_submitted_job(const std::filesystem::path& dir, const std::string& kind, const std::string& id);
+// Every array job id of those files, each once, as written (status checks
+// that each is a number before it goes into a command line).
+std::vector<std::string> recorded_array_jobs(const std::filesystem::path& dir, int tasks);
+
 }  // namespace chaosweep

@@ -76,11 +76,16 @@ class CoverageGrid {
   void mark_point(double x, double y) { mark_cell(cell_x(x), cell_y(y)); }
   // Supercover: every cell the closed segment touches, including both side
   // cells where it passes exactly through a grid corner. Inline for the
-  // common case of a step that stays in its cell.
+  // common cases of a step that stays in its cell or enters a side
+  // neighbour (both ends in one row or column: the segment touches only
+  // those two cells, as the traversal in mark_crossing finds).
   void mark_segment(double x0, double y0, double x1, double y1) {
     const int i = cell_x(x0), j = cell_y(y0);
-    if (i == cell_x(x1) && j == cell_y(y1)) mark_cell(i, j);
-    else mark_crossing(x0, y0, x1, y1);
+    const int i1 = cell_x(x1), j1 = cell_y(y1);
+    mark_cell(i, j);
+    const int di = i1 - i, dj = j1 - j;
+    if ((di == 0 && (dj == 1 || dj == -1)) || (dj == 0 && (di == 1 || di == -1))) mark_cell(i1, j1);
+    else if (di != 0 || dj != 0) mark_crossing(x0, y0, x1, y1);
   }
 
  private:

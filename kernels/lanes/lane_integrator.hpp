@@ -29,6 +29,34 @@ struct FastPathBits {
   unsigned applied, entered;
 };
 
+// A vector's fixed inputs to fast_path: what only the sink changes (band,
+// cell size, budget, fast mode), loaded once per call of steps_until_sink
+// instead of at every pass (the stores to the arrays between passes would
+// otherwise make the compiler reload them).
+template <class V>
+struct FastPathInputs {
+  V lo_x, hi_x, lo_y, hi_y, fh, inv, mi, mj, budget, stuck_time, niter;
+  decltype(V() < V()) fast_ok, fast_cross;  // fast >= 1, fast == 2
+};
+
+template <class V>
+inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
+  const V fast = lane_load<V>(a.fast + o);
+  return {lane_load<V>(a.lo_x + o),
+          lane_load<V>(a.hi_x + o),
+          lane_load<V>(a.lo_y + o),
+          lane_load<V>(a.hi_y + o),
+          lane_load<V>(a.fh + o),
+          lane_load<V>(a.inv_cell + o),
+          lane_load<V>(a.max_i + o),
+          lane_load<V>(a.max_j + o),
+          lane_load<V>(a.budget + o),
+          lane_load<V>(a.stuck_time + o),
+          lane_load<V>(a.niter + o),
+          fast >= lane::splat<V>(1.0),
+          fast == lane::splat<V>(2.0)};
+}
+
 // The step's common case, vectorised (see LaneArrays). Mirrors
 // RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
 // operation for operation, so a lane's result never depends on the path.
@@ -37,11 +65,10 @@ struct FastPathBits {
 // lane of the kernel has the fold boundary or obstacles (else the short form
 // for mirror lanes on open maps).
 template <class V, bool General>
-inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passes) {
+inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, const Rk4Step<V>& s, V passes) {
   const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
-  const V lo_x = lane_load<V>(a.lo_x + o), hi_x = lane_load<V>(a.hi_x + o);
-  const V lo_y = lane_load<V>(a.lo_y + o), hi_y = lane_load<V>(a.hi_y + o);
+  const V lo_x = c.lo_x, hi_x = c.hi_x, lo_y = c.lo_y, hi_y = c.hi_y;
   V X1 = X + s.dX, Y1 = Y + s.dY, UX{}, UY{}, UX1{}, UY1{};
   if constexpr (!General) {
     // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a
@@ -61,27 +88,28 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const Rk4Step<V>& s, V passe
     X1 = triangle_fold(lane::select(is_fold, UX1, X1), lo_x, hi_x);
     Y1 = triangle_fold(lane::select(is_fold, UY1, Y1), lo_y, hi_y);
   }
-  const V t1 = t + lane_load<V>(a.fh + o);
-  const V inv = lane_load<V>(a.inv_cell + o);
+  const V t1 = t + c.fh;
   // cell_x's clamp from below is a no-op for the steps applied: they end
   // inside the band, X1 >= lo_x >= 0 (fo, or 0 for the fold; a -0 index
   // compares equal to 0).
-  const V mi = lane_load<V>(a.max_i + o), mj = lane_load<V>(a.max_j + o);
-  V ci = lane::trunc(X1 * inv), cj = lane::trunc(Y1 * inv);
-  ci = lane::select(ci < mi, ci, mi);
-  cj = lane::select(cj < mj, cj, mj);
+  V ci = lane::trunc(X1 * c.inv), cj = lane::trunc(Y1 * c.inv);
+  ci = lane::select(ci < c.mi, ci, c.mi);
+  cj = lane::select(cj < c.mj, cj, c.mj);
   const V seg = lane_load<V>(a.seg_step + o) + passes;
-  const V fast = lane_load<V>(a.fast + o), cell_i = lane_load<V>(a.cell_i + o), cell_j = lane_load<V>(a.cell_j + o);
+  const V cell_i = lane_load<V>(a.cell_i + o), cell_j = lane_load<V>(a.cell_j + o);
   const auto inside = (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
-  const auto ok = inside & (fast >= one) & (t1 < lane_load<V>(a.budget + o)) &
-                  ((t1 - lane_load<V>(a.t_last_new + o)) < lane_load<V>(a.stuck_time + o)) &
-                  (seg < lane_load<V>(a.niter + o)) & (s.u.x == s.u.x) & (s.u.y == s.u.y) & (s.u.z == s.u.z);
-  // Cell indices are small whole numbers: the step crossed one edge exactly
-  // when the squared index distance is 1 (a corner or a longer jump is left
-  // to the sink's supercover).
+  // One NaN test for the state: a NaN coordinate makes the sum NaN (so does
+  // inf - inf, which only sends that step to the sink, the reference path).
+  const V sum = s.u.x + s.u.y + s.u.z;
+  const auto ok = inside & c.fast_ok & (t1 < c.budget) & ((t1 - lane_load<V>(a.t_last_new + o)) < c.stuck_time) &
+                  (seg < c.niter) & (sum == sum);
+  // Cell indices are small whole numbers: the squared index distance is 0
+  // for a step that stays in its cell and 1 for one that crossed one edge
+  // exactly (a corner or a longer jump is left to the sink's supercover).
   const V di = ci - cell_i, dj = cj - cell_j;
-  auto quiet = ok & (ci == cell_i) & (cj == cell_j);
-  auto entered = ok & (fast == lane::splat<V>(2.0)) & (lane::fma(di, di, dj * dj) == one);
+  const V d2 = lane::fma(di, di, dj * dj);
+  auto quiet = ok & (d2 == lane::splat<V>(0.0));
+  auto entered = ok & c.fast_cross & (d2 == one);
   if constexpr (General) {  // the step must end where Eq. 8 moves nothing
     quiet = quiet & (lane_load<V>(a.clear_here + o) == one);
     const V target = lane::select(
@@ -193,7 +221,11 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
   StepInput<V> in[N];
-  for (int k = 0; k < N; ++k) in[k] = load_step_input<V>(a, k * w);
+  FastPathInputs<V> fixed[N];
+  for (int k = 0; k < N; ++k) {
+    in[k] = load_step_input<V>(a, k * w);
+    fixed[k] = load_fast_path_inputs<V>(a, k * w);
+  }
   StepsDone d;
   do {
     ++d.passes;
@@ -213,7 +245,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
     unsigned entered = 0;
     d.applied = 0;
     for (int k = 0; k < N; ++k) {
-      const FastPathBits b = fast_path<V, General>(a, k * w, s[k], lane::splat<V>(double(d.passes)));
+      const FastPathBits b = fast_path<V, General>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)));
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
       in[k].u = s[k].u;

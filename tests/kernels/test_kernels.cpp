@@ -1,6 +1,7 @@
 // Kernels: the numerics of docs/spec.md §1 and §2 (original Arnold planner).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -689,4 +690,33 @@ TEST(FormatNumber, WithSignificantDigitsIsWhatIostreamPrints) {
     os << v;
     EXPECT_EQ(format_number(v, 6), os.str()) << v;
   }
+}
+
+// The inline cases of mark_segment (a step that stays in its cell or enters a
+// side neighbour) against dense sampling, on the steps the planners take:
+// shorter than a cell, from random points, many ending near an edge.
+TEST(Supercover, EqualsDenseSamplingOnStepsShorterThanACell) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 20.0), step(-1.4, 1.4);
+  int side_steps = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double x0 = u(rng), y0 = u(rng);
+    const double x1 = std::clamp(x0 + step(rng), 0.0, 20.0), y1 = std::clamp(y0 + step(rng), 0.0, 20.0);
+    CoverageGrid g(square_map(20.0), 1.5), dense(square_map(20.0), 1.5);
+    g.mark_segment(x0, y0, x1, y1);
+    for (int k = 0; k <= 20000; ++k) {
+      const double t = k / 20000.0;
+      dense.mark_point(x0 + t * (x1 - x0), y0 + t * (y1 - y0));
+    }
+    const auto a = marked_cells(g), b = marked_cells(dense);
+    const int di = std::abs(g.cell_x(x1) - g.cell_x(x0)), dj = std::abs(g.cell_y(y1) - g.cell_y(y0));
+    if (di + dj <= 1) {
+      side_steps += di + dj;
+      ASSERT_EQ(a, b) << trial;  // no corner to pass: exactly the cells sampled
+    } else {
+      for (const auto& c : b) ASSERT_TRUE(a.count(c)) << trial;
+      ASSERT_LE(a.size(), b.size() + 2) << trial;
+    }
+  }
+  EXPECT_GT(side_steps, 500);  // the side-neighbour case was exercised
 }

@@ -209,6 +209,46 @@ TEST(ChebyshevPlanner, AStartTooCloseToAnObstacleIsInvalidAndSaysWhy) {
   EXPECT_NE(res.message.find("radius"), std::string::npos) << res.message;
 }
 
+// Each move is charged dist / moves at speed v (one hypot per walk), so the
+// clock is the traced path's length over v up to rounding; and the cells are
+// the supercover of every traced move, whatever the planner skips.
+TEST(ChebyshevPlanner, TheClockIsThePathLengthOverVAndTheCellsEveryMovesSupercover) {
+  for (const Environment& env : {case1(), case2()}) {
+    for (const Sampling sampling : {Sampling::segments, Sampling::points}) {
+      RunParams p;
+      p.planner = Planner::chebyshev;
+      p.start_x = 1, p.start_y = 8;
+      p.sr = 0.25;
+      p.v = 0.7;
+      p.sampling = sampling;
+      p.max_subgoals = 600;
+      RecordingSink sink;
+      const RunResult res = run_planner(p, env, &sink);
+      ASSERT_GT(sink.pts.size(), 1000u) << res.message;
+      CoverageGrid cells(env, p.sr);
+      cells.mark_point(sink.pts[0].x, sink.pts[0].y);
+      double length = 0;
+      for (std::size_t i = 1; i < sink.pts.size(); ++i) {
+        const TracePoint &a = sink.pts[i - 1], &b = sink.pts[i];
+        length += std::hypot(b.x - a.x, b.y - a.y);
+        ASSERT_NEAR(b.t, length / p.v, 1e-9 * (1 + b.t)) << i;
+        if (sampling == Sampling::points) cells.mark_point(b.x, b.y);
+        else cells.mark_segment(a.x, a.y, b.x, b.y);
+      }
+      const double end = res.status == Status::ok ? res.coverage_time : sink.pts.back().t;
+      EXPECT_NEAR(end, length / p.v, 1e-9 * end);
+      // The run's own grid: the same run again, its grid kept.
+      CoverageGrid run_cells(env, p.sr);
+      RunResult again;
+      again.t_opt = res.t_opt;
+      run_chebyshev(p, env, run_cells, again, nullptr);
+      ASSERT_EQ(again.steps, res.steps);
+      for (int j = 0; j < cells.ny(); ++j)
+        for (int i = 0; i < cells.nx(); ++i) ASSERT_EQ(run_cells.at(i, j), cells.at(i, j)) << i << ", " << j;
+    }
+  }
+}
+
 TEST(ChebyshevPlanner, InTheCommonModelTheRawOrbitCoversFasterThanTheFlattenedOne) {
   // A finding (docs/seed001.md): the arcsine transform evens out the
   // sub-goals, but coverage here counts the cells the path crosses, and the

@@ -117,29 +117,51 @@ class ChebyshevRun {
   }
 
   // Straight-line interpolation at the robot's step (Section 4), marking the
-  // cells on the way; the last move lands on the sub-goal exactly.
+  // cells on the way; the last move lands on the sub-goal exactly. The moves
+  // are equal (dist / moves) up to rounding, so each is charged that length
+  // at speed v: one hypot per walk, not per move (a hypot per move was most
+  // of the planner's time; the clock differs from it by a few ulps).
   void walk_to(double gx, double gy, SegmentKind kind) {
     const double dist = std::hypot(gx - px_, gy - py_);
     const long moves = std::max<long>(1, long(std::ceil(dist / p_.step)));
-    const double sx = px_, sy = py_;
-    for (long m = 1; m <= moves && !ended_; ++m) {
-      const double f = double(m) / double(moves);
-      const double nx = m == moves ? gx : sx + f * (gx - sx), ny = m == moves ? gy : sy + f * (gy - sy);
-      const double len = std::hypot(nx - px_, ny - py_);
-      if (p_.sampling == Sampling::points) grid_.mark_point(nx, ny);
-      else grid_.mark_segment(px_, py_, nx, ny);
-      px_ = nx, py_ = ny;
-      t_ += len / p_.v;
-      ++r_.steps;
+    const double move_time = dist / double(moves) / p_.v;
+    const double sx = px_, sy = py_, budget = budget_;
+    const bool points = p_.sampling == Sampling::points;
+    TraceSink* const trace = trace_;
+    // The robot's state in locals for the walk (the grid calls could alias
+    // the members for the compiler), stored back where the walk stops.
+    double x = px_, y = py_, t = t_;
+    long m = 1;
+    const auto stop = [&] {
+      px_ = x, py_ = y, t_ = t;
+      r_.steps += m;
+    };
+    int ci = grid_.cell_x(x), cj = grid_.cell_y(y);
+    for (;; ++m) {
       const bool last = m == moves;
+      const double f = double(m) / double(moves);
+      const double nx = last ? gx : sx + f * (gx - sx), ny = last ? gy : sy + f * (gy - sy);
+      // A move that stays in the robot's cell marks nothing new: that cell
+      // was marked when the robot entered it (a move is shorter than a cell,
+      // so most moves are such), and coverage, checked after every mark,
+      // cannot have reached dc without one.
+      const int ni = grid_.cell_x(nx), nj = grid_.cell_y(ny);
+      const bool entered = ni != ci || nj != cj;
+      if (entered) {
+        if (points) grid_.mark_cell(ni, nj);
+        else grid_.mark_segment(x, y, nx, ny);
+        ci = ni, cj = nj;
+      }
+      x = nx, y = ny;
+      t += move_time;
       if (last) ++r_.subgoals;
-      if (trace_)
-        trace_->point({t_, px_, py_, last && kind == SegmentKind::chebyshev ? SegmentKind::subgoal : kind, 0});
-      if (covered()) return end(Status::ok);
-      if (t_ >= budget_) return end(Status::timeout, "budget reached before dc");
-      if (last && p_.max_subgoals > 0 && r_.subgoals >= p_.max_subgoals)
-        return end(Status::timeout, "max_subgoals reached before dc");
+      if (trace) trace->point({t, x, y, last && kind == SegmentKind::chebyshev ? SegmentKind::subgoal : kind, 0});
+      if (entered && covered()) return stop(), end(Status::ok);
+      if (t >= budget) return stop(), end(Status::timeout, "budget reached before dc");
+      if (last) break;
     }
+    stop();
+    if (p_.max_subgoals > 0 && r_.subgoals >= p_.max_subgoals) end(Status::timeout, "max_subgoals reached before dc");
   }
 
   const RunParams& p_;
