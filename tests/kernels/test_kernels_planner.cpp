@@ -2,6 +2,7 @@
 // small hand-made cases.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <set>
@@ -236,6 +237,32 @@ TEST(Transit, AroundAnObstacleIsRebuiltFromThePushedOutPointAndArrives) {
   EXPECT_EQ(run.position().x, 18.0);
   EXPECT_EQ(run.position().y, 10.5);
   EXPECT_TRUE(h.trace_avoids_obstacles());
+}
+
+TEST(Transit, AHitPointIsPushedOntoTheLineAtFoOrMirroredAboutIt) {
+  // The transit above under each obstacle_response: push puts a hit point on
+  // the obstacle grown by fo (Eq. 8 as printed), mirror reflects it about
+  // that line, so it lands beyond the line by its penetration, never on it.
+  RunParams p = mechanism_run(20.0);
+  p.th = 50;
+  p.start_x = 2.0;
+  p.start_y = 10.5;
+  const Environment env = square_map(20.0, {{9.5, 9.5, 10.5, 10.5}});
+  const double lo = 9.5 - p.fo, hi = 10.5 + p.fo;  // the grown obstacle
+  auto on_grown_face = [&](const TracePoint& t) {
+    const bool x_in = t.x >= lo && t.x <= hi, y_in = t.y >= lo && t.y <= hi;
+    return (x_in && (t.y == lo || t.y == hi)) || (y_in && (t.x == lo || t.x == hi));
+  };
+  for (ObstacleResponse response : {ObstacleResponse::push, ObstacleResponse::mirror}) {
+    p.obstacle_response = response;
+    Harness h(p, env);
+    ASSERT_TRUE(h.run->transit_to({18.0, 10.5}));
+    ASSERT_GE(h.r.transit_attempts, 1);
+    EXPECT_TRUE(h.trace_avoids_obstacles());
+    const auto on_face = std::count_if(h.trace.points.begin(), h.trace.points.end(), on_grown_face);
+    if (response == ObstacleResponse::push) EXPECT_GE(on_face, h.r.transit_attempts);
+    else EXPECT_EQ(on_face, 0);
+  }
 }
 
 TEST(Transit, ReusingTheRemainingLogisticPointsKeepsThePathsLength) {
