@@ -1,6 +1,7 @@
 #include "engine/run/thread_batch_evaluator.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <vector>
 
@@ -10,16 +11,25 @@
 namespace chaosweep {
 
 struct ThreadBatchEvaluator::Arena {
+  explicit Arena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
   tbb::task_arena arena;
+  std::atomic<int> batches_running{0};  // run() calls holding the arena's threads
 };
 
 ThreadBatchEvaluator::ThreadBatchEvaluator(int threads, SimdTarget target)
-    : arena_(std::make_unique<Arena>(Arena{tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic)})),
-      target_(target) {}
+    : arena_(std::make_unique<Arena>(threads)), target_(target) {}
 
 ThreadBatchEvaluator::~ThreadBatchEvaluator() = default;
 
 void ThreadBatchEvaluator::parallel(std::size_t n, const std::function<void(std::size_t)>& body) const {
+  // While run() holds every thread of the arena for a batch, a caller from
+  // outside it (the sweep's timed hand-over of finished rows) would wait
+  // until the batch's queue ran dry, so no row reached OUT.partial by time
+  // at 2 threads and more: it does the work on its own thread instead.
+  if (arena_->batches_running.load(std::memory_order_acquire) > 0) {
+    for (std::size_t i = 0; i < n; ++i) body(i);
+    return;
+  }
   parallel_indices(arena_->arena, n, body);
 }
 
@@ -42,6 +52,11 @@ std::size_t ThreadBatchEvaluator::run(std::span<const RunTuple> in, std::span<Ru
   }
   tbb::task_arena& arena = arena_->arena;
   const int workers = std::max(1, arena.max_concurrency());
+  arena_->batches_running.fetch_add(1, std::memory_order_acq_rel);
+  struct Leave {
+    std::atomic<int>& n;
+    ~Leave() { n.fetch_sub(1, std::memory_order_acq_rel); }
+  } leave{arena_->batches_running};
   parallel_indices(arena, std::size_t(workers), [&](std::size_t) {
     // A failure of a worker's own bookkeeping (e.g. memory) leaves its
     // in-flight runs marked error; the other workers go on.

@@ -285,6 +285,35 @@ TEST(SweepRunner, FinishedRunsReachTheSinkOnTimeAsARunIdPrefixWhileTheBatchRuns)
   }
 }
 
+// The CLI's sink encodes rows through the evaluator's own parallel(); called
+// by the timed hand-over while the batch holds every thread of the arena, it
+// must not wait for the batch to end (it did: at 2 threads and more, no row
+// reached OUT.partial before the end of a 4096-run batch).
+TEST(SweepRunner, ASinkUsingTheEvaluatorsThreadsGetsRowsWhileTheBatchRuns) {
+  // A batch of a few hundred ms in many short runs, so that its queue of
+  // runs is far from empty when the first piece is due (a blocked
+  // parallel() got in only once the queue had run dry).
+  const SweepSpec s = few_ms_runs(160);
+  SweepOptions opt = one_batch_timed();
+  ProgressCounters counters;
+  opt.progress = &counters;
+  const ThreadBatchEvaluator evaluator(2);
+  std::vector<std::int64_t> done_after_piece;
+  std::int64_t rows_seen = 0;
+  const std::int64_t handed = run_sweep(s, evaluator, opt, [&](const std::vector<RunRow>& rows) {
+    std::vector<int> touched(rows.size(), 0);
+    evaluator.parallel(rows.size(), [&](std::size_t i) { touched[i] = 1; });
+    for (int t : touched) ASSERT_EQ(t, 1);
+    rows_seen += std::int64_t(rows.size());
+    done_after_piece.push_back(counters.done.load());
+  });
+  EXPECT_EQ(handed, s.size());
+  EXPECT_EQ(rows_seen, s.size());
+  ASSERT_GT(done_after_piece.size(), 1u) << "the batch reached the sink only at its end";
+  EXPECT_LT(done_after_piece.front(), s.size() / 2)
+      << "the first timed piece waited in parallel() until the batch's queue of runs ran dry";
+}
+
 TEST(SweepRunner, ASinkThatFailsStopsTheRunsAndItsErrorReachesTheCaller) {
   const SweepSpec s = few_ms_runs(40);
   SweepOptions opt = one_batch_timed();
