@@ -24,6 +24,9 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "              midpoints, covered cells\n"
       "  coverage    coverage vs time of several runs (--run ID, repeatable) or of the median\n"
       "              run of each value of --by COLUMN\n"
+      "  ct_distribution  per file (A.h5 B.h5 ...) and group of --by COL1,COL2: the coverage-time\n"
+      "              distribution (ECDF), each curve topping out at its share of ok runs; at most 12\n"
+      "              curves\n"
       "  cheb_histogram, cheb_lyapunov  seed 001's Chebyshev map: orbit histogram raw and\n"
       "              transformed; Lyapunov exponent over k (computed, no result file)\n"
       "  seed002_limit  seed 002: the best bouncing-policy mixture's limiting distribution\n"
@@ -47,7 +50,9 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--mark", o->mark, "fig6a/fig6b: the tuple to mark, A,B,C");
   cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
-  cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column; line: one line per value");
+  cmd->add_option("--by", o->fig.by,
+                  "coverage: one run per value of this column; line: one line per value; ct_distribution: a curve "
+                  "per file and value of these columns (comma-separated)");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--bins", o->fig.bins, "seed002_limit: orientation bins")->check(CLI::Range(4, 3600));
   cmd->add_option("--policy", o->fig.policy, "seed002_limit: 0 the best mixture (default), i the i-th policy alone");
@@ -69,7 +74,9 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
         const bool needs = figure_needs_results(o->name);
         if (needs && o->files.empty()) throw AnalysisError("give one or more result files (.h5)");
         const FigureOutput out =
-            make_figure(o->name, needs ? ResultSet::load(o->files).where(o->where) : ResultSet{}, o->fig, o->out);
+            figure_per_file(o->name)
+                ? make_per_file_figure(o->name, o->files, o->where, o->fig, o->out)
+                : make_figure(o->name, needs ? ResultSet::load(o->files).where(o->where) : ResultSet{}, o->fig, o->out);
         for (const std::string& line : out.lines) std::cout << line << "\n";
         std::cout << "wrote " << out.image << " and " << out.csv << "\n";
         return exit_ok;
