@@ -23,16 +23,16 @@ const std::map<std::string, std::string>& measured() {
       {"dt_halvings", "step halvings"},
       {"final_x", "final x (m)"},
       {"final_y", "final y (m)"},
-      {"segments", "segments"},
+      {"segments", "path segments"},
       {"index_switches", "ds_index switches"},
-      {"zonings", "zonings"},
-      {"transits", "transits"},
+      {"zonings", "map zonings"},
+      {"transits", "transits (count)"},
       {"zones_dropped", "zones dropped"},
       {"transit_points", "transit points"},
       {"transit_attempts", "transit attempts"},
       {"final_ds_index", "final ds_index"},
       {"subgoals", "sub-goals"},
-      {"reflections", "reflections"},
+      {"reflections", "reflections (count)"},
       {"wall_time", "wall time (s)"},
   };
   return m;
@@ -54,7 +54,7 @@ std::string from_help(const std::string& name, std::string help) {
   if (help.size() > name.size() + 1 && help.compare(help.size() - name.size() - 1, std::string::npos, " " + name) == 0)
     help.erase(help.size() - name.size() - 1);  // "Arnold coefficient A" -> "Arnold coefficient"
   std::string label = name;
-  if (!help.empty() && help.size() <= 40 && help.find(',') == std::string::npos) label += ": " + help;
+  if (!help.empty() && name.size() + help.size() <= 42 && help.find(',') == std::string::npos) label += ": " + help;
   if (!unit.empty()) label += " (" + unit + ")";
   return label;
 }

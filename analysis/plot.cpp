@@ -75,8 +75,9 @@ void frame(mglGraph& gr, const std::string& title, const std::string& xlabel, co
   if (!title.empty()) gr.Title(literal(title).c_str(), "", title.size() > 40 ? -1.1 : -1.4);
   gr.Box();
   gr.Axis("xy");
-  gr.Label('x', literal(xlabel).c_str(), 0);
-  gr.Label('y', literal(ylabel).c_str(), 0);
+  // Long labels (a column's meaning and unit) smaller, to fit beside the axis.
+  gr.Label('x', literal(xlabel).c_str(), 0, xlabel.size() > 30 ? "size -0.8" : "");
+  gr.Label('y', literal(ylabel).c_str(), 0, ylabel.size() > 20 ? "size -0.75" : "");
 }
 
 struct Frame {
@@ -101,6 +102,40 @@ void put_mark(mglGraph& gr, const PlotMark& m, LabelSide side, const Frame& f, d
   const double by0 = f.y0 + b.y0 * (f.y1 - f.y0), by1 = f.y0 + b.y1 * (f.y1 - f.y0);
   if (pad) gr.FaceZ(mglPoint(bx0, by0, 0.6), bx1 - bx0, by1 - by0, "w");
   gr.Puts(mglPoint(bx0, by0 + 0.15 * (by1 - by0), 0.9), literal(m.label).c_str(), ":L", -0.8);
+}
+
+struct LegendEntry {
+  std::string name, pen;
+  bool marker = false;  // drawn as a mark, not a line sample
+};
+
+// The legend right of the axes, in the plot's coordinates beyond its edge
+// (MathGL's own legend stays inside the axes, over the data).
+void outside_legend(mglGraph& gr, const Frame& f, const std::vector<LegendEntry>& entries, const LegendLayout& l,
+                    double z) {
+  gr.SetCut(false);
+  const double w = f.x1 - f.x0, h = f.y1 - f.y0;
+  const double text_h = 0.045 * -l.text_size / 0.8;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const std::size_t c = k / l.rows, r = k % l.rows;
+    const double x = f.x1 + (l.offset + double(c) * l.column_width) * w;
+    const double y = f.y1 - (double(r) + 0.5) * l.row * h;
+    const LegendEntry& e = entries[k];
+    if (e.marker) {
+      gr.Mark(mglPoint(x + 0.5 * l.sample * w, y, z), e.pen.c_str());
+    } else {
+      gr.Line(mglPoint(x, y, z), mglPoint(x + l.sample * w, y, z), e.pen.c_str());
+    }
+    gr.Puts(mglPoint(x + 1.3 * l.sample * w, y - 0.4 * text_h * h, z), literal(e.name).c_str(), ":L", l.text_size);
+  }
+}
+
+// A title over the whole canvas, then the plot's cell of `share` of the width.
+void title_and_cell(mglGraph& gr, const std::string& title, double share) {
+  gr.SetFontSize(3.2);
+  gr.SubPlot(1, 1, 0, "<>_^");
+  if (!title.empty()) gr.Title(literal(title).c_str(), "", -1.2 * std::min(1.0, 40.0 / double(title.size())));
+  gr.MultiPlot(100, 1, 0, int(share * 100), 1, "<_^");
 }
 
 }  // namespace
@@ -180,12 +215,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
   const LegendLayout lay = legend_layout(named, longest);
   double scale = 1.0;  // the font relative to the plot: larger in a narrower plot
   if (rep.legend_outside) {
-    // The title over the whole width, the plot left, the legend in its own
-    // column(s) right of it, covering nothing.
-    gr.SetFontSize(3.2);
-    gr.SubPlot(1, 1, 0, "");
-    if (!p.title.empty()) gr.Title(literal(p.title).c_str(), "", p.title.size() > 40 ? -1.1 : -1.4);
-    gr.MultiPlot(100, 1, 0, int(lay.plot_width * 100), 1, "<_^");
+    title_and_cell(gr, p.title, lay.plot_width);
     scale = plot_font_scale(lay.plot_width);
   }
   gr.SetRanges(x0, x1, y0, y1);
@@ -193,6 +223,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
   gr.Grid("xy", "h");
   const Frame f{x0, x1, y0, y1};
   std::vector<std::vector<std::pair<double, double>>> lines;
+  std::vector<LegendEntry> legend;
   for (std::size_t k = 0; k < p.series.size(); ++k) {
     const LineSeries& s = p.series[k];
     if (s.x.empty()) continue;
@@ -206,7 +237,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
                                           : series_pen(k);
     gr.Plot(x, y, pen.c_str());
     rep.pens.push_back(pen);
-    if (!s.name.empty()) gr.AddLegend(literal(s.name).c_str(), pen.c_str());
+    if (!s.name.empty()) legend.push_back({s.name, pen});
   }
   if (p.mark) {
     LabelSide side = p.mark->side;
@@ -214,11 +245,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
       side = choose_label_side(f.fx(p.mark->x), f.fy(p.mark->y), p.mark->label.size(), scale, lines);
     put_mark(gr, *p.mark, side, f, scale, false, rep);
   }
-  if (rep.legend_outside) {
-    gr.InPlot(lay.plot_width, 1.0, 0.0, 0.9, false);
-    gr.SetFontSize(lay.font);
-    gr.Legend(0, 1, "#", "");
-  }
+  if (rep.legend_outside) outside_legend(gr, f, legend, lay, 0);
   save(gr, path);
   return rep;
 }
@@ -228,11 +255,18 @@ void render(const MapPlot& p, const std::string& path, ImageSize size) {
   mglGraph gr(0, size.width, size.height);
   // The title over the whole width, the map left, its legend right of it
   // (inside, it covered the path).
-  gr.SetFontSize(3.2);
-  gr.SubPlot(1, 1, 0, "");
-  if (!p.title.empty()) gr.Title(literal(p.title).c_str(), "", p.title.size() > 40 ? -1.1 : -1.4);
-  const double map_width = 0.74;
-  gr.MultiPlot(100, 1, 0, int(map_width * 100), 1, "<_^");
+  std::vector<LegendEntry> legend{{"path", "b"}};
+  if (!p.transit_paths.empty()) legend.push_back({"transit", "r2"});
+  if (!p.zone_midpoints.empty()) legend.push_back({"zone midpoint", "m+", true});
+  if (!p.subgoals.empty()) legend.push_back({"sub-goal", "k.", true});
+  if (!p.regions.empty()) legend.push_back({"coverage rectangle", "G3"});
+  if (!p.transitions.empty()) legend.push_back({"transition rectangle", "m;2"});
+  legend.push_back({"start", "g#o", true});
+  legend.push_back({"end", "r#s", true});
+  std::size_t longest = 0;
+  for (const LegendEntry& e : legend) longest = std::max(longest, e.name.size());
+  const LegendLayout lay = legend_layout(legend.size(), longest);
+  title_and_cell(gr, p.title, lay.plot_width);
   gr.SetRanges(0, p.lx, 0, p.ly, -1, 1);
   gr.Aspect(p.lx, p.ly);
   frame(gr, "", "x (m)", "y (m)");
@@ -263,17 +297,7 @@ void render(const MapPlot& p, const std::string& path, ImageSize size) {
   for (const Box2& b : p.transitions) outline(b, "m;2");
   gr.Mark(mglPoint(p.start.first, p.start.second, 0.7), "g#o");
   gr.Mark(mglPoint(p.end.first, p.end.second, 0.7), "r#s");
-  gr.AddLegend("path", "b");
-  if (!p.transit_paths.empty()) gr.AddLegend("transit", "r2");
-  if (!p.zone_midpoints.empty()) gr.AddLegend("zone midpoint", "m+");
-  if (!p.subgoals.empty()) gr.AddLegend("sub-goal", "k.");
-  if (!p.regions.empty()) gr.AddLegend("coverage rectangle", "G3");
-  if (!p.transitions.empty()) gr.AddLegend("transition rectangle", "m;2");
-  gr.AddLegend("start", "g#o");
-  gr.AddLegend("end", "r#s");
-  gr.InPlot(map_width, 1.0, 0.0, 0.9, false);
-  gr.SetFontSize(5.5);
-  gr.Legend(0, 1, "#", "");
+  outside_legend(gr, Frame{0, p.lx, 0, p.ly}, legend, lay, 0.7);
   save(gr, path);
 }
 

@@ -77,7 +77,7 @@ namespace {
 
 // A character's width and the text's height in axis fractions of a plot
 // spanning the canvas (MathGL's font at the sizes plot.cpp uses).
-constexpr double char_width = 0.0155, text_height = 0.055, gap = 0.02;
+constexpr double char_width = 0.0165, text_height = 0.055, gap = 0.02;
 
 }  // namespace
 
@@ -135,7 +135,8 @@ LabelSide choose_label_side(double fx, double fy, std::size_t chars, double scal
           const double t = k / 50.0;
           const double x = line[i].first + t * (line[i + 1].first - line[i].first);
           const double y = line[i].second + t * (line[i + 1].second - line[i].second);
-          hits += x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1;
+          constexpr double m = 0.015;  // a little clear space around the text
+          hits += x >= b.x0 - m && x <= b.x1 + m && y >= b.y0 - m && y <= b.y1 + m;
         }
     if (best_hits < 0 || (inside && !best_inside) || (inside == best_inside && hits < best_hits))
       best = s, best_hits = hits, best_inside = inside;
@@ -144,13 +145,27 @@ LabelSide choose_label_side(double fx, double fy, std::size_t chars, double scal
 }
 
 LegendLayout legend_layout(std::size_t entries, std::size_t longest_chars) {
-  // Rows about 3.1 font units apart on an 800x600 canvas, characters about
-  // one unit wide; MathGL starts a new column when the rows fill the height.
-  const double font = entries <= 12 ? 5.5 : entries <= 24 ? 4.5 : 3.6;
-  const double rows_fit = std::floor(480.0 / (3.1 * font));
-  const double columns = std::ceil(double(entries) / rows_fit);
-  const double width_px = columns * (45.0 + double(longest_chars) * font * 1.0);
-  return {std::clamp(1.0 - (width_px + 30.0) / 800.0, 0.45, 0.8), font};
+  // In pixels of an 800x600 canvas (MathGL scales text with the canvas): a
+  // character is about 10 x |size| wide, a row 28 x |size| high; the axes
+  // are about 375 high and lose about 130 of the width to their margins.
+  LegendLayout l;
+  if (entries == 0) return l;
+  constexpr double axes_height = 375, margins = 130, canvas = 800;
+  l.text_size = entries <= 2 * 19 ? -0.7 : -0.55;
+  const double row_px = 28.0 * -l.text_size, char_px = 10.1 * -l.text_size;
+  const auto rows_fit = std::size_t(axes_height / row_px);
+  l.columns = (entries + rows_fit - 1) / rows_fit;
+  l.rows = (entries + l.columns - 1) / l.columns;
+  const double sample_px = 36, gap_px = 12, offset_px = 14;
+  const double column_px = sample_px + 2 * gap_px + double(longest_chars) * char_px;
+  const double legend_px = offset_px + double(l.columns) * column_px;
+  l.plot_width = std::clamp((canvas - legend_px - 10) / canvas, 0.45, 0.9);
+  const double axes_px = l.plot_width * canvas - margins;
+  l.row = row_px / axes_height;
+  l.column_width = column_px / axes_px;
+  l.sample = sample_px / axes_px;
+  l.offset = offset_px / axes_px;
+  return l;
 }
 
 double plot_font_scale(double plot_width) {

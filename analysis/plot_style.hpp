@@ -55,11 +55,16 @@ LabelBox place_label(LabelSide side, double fx, double fy, std::size_t chars, do
 LabelSide choose_label_side(double fx, double fy, std::size_t chars, double scale,
                             const std::vector<std::vector<std::pair<double, double>>>& lines);
 
-// Room for a legend right of the plot: the share of the width the plot keeps
-// and the legend's font size, from the number of entries and the longest.
+// A legend right of the plot, drawn in the plot's own coordinates beyond
+// its right edge: columns of rows, filled column by column.
 struct LegendLayout {
-  double plot_width;  // share of the canvas width for the plot (the legend takes the rest)
-  double font;        // MathGL font size of the legend
+  double plot_width = 1;   // share of the canvas width for the plot and its legend's MultiPlot cell
+  double text_size = -0.7;  // MathGL Puts size
+  std::size_t rows = 0, columns = 0;
+  double row = 0;           // row step, share of the axes' height
+  double column_width = 0;  // share of the axes' width
+  double sample = 0;        // the line sample's length, share of the axes' width
+  double offset = 0;        // from the axes' right edge to the legend, share of the axes' width
 };
 LegendLayout legend_layout(std::size_t entries, std::size_t longest_chars);
 // The font relative to a plot that keeps `plot_width` of the canvas width
