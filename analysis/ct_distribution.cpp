@@ -37,6 +37,7 @@ namespace {
 struct Curve {
   std::size_t file, group;
   std::vector<std::string> key;
+  std::vector<double> key_num;  // NaN for text keys
   std::string name;
   std::size_t runs = 0;
   std::vector<double> ct;  // of the ok runs, sorted
@@ -49,18 +50,19 @@ FigureOutput ct_distribution(const std::vector<LabelledResults>& sets, const Fig
   if (sets.empty()) throw AnalysisError("ct_distribution: give one or more result files (.h5)");
   const std::vector<std::string> by = split_list(opt.by);
   // The groups of every file, in one order (natural, as group_rows gives them).
-  std::vector<std::vector<std::string>> keys;
+  std::vector<std::pair<std::vector<double>, std::vector<std::string>>> keys;
   std::vector<Curve> curves;
   for (std::size_t f = 0; f < sets.size(); ++f) {
     const ResultSet& rs = sets[f].rs;
     (void)rs.num("coverage_time");
     for (const Group& g : group_rows(rs, by, all_rows(rs))) {
-      Curve c{f, 0, g.key, sets[f].label, g.rows.size(), {}};
+      Curve c{f, 0, g.key, g.key_num, sets[f].label, g.rows.size(), {}};
       for (std::size_t r : ok_rows(rs, g.rows)) c.ct.push_back(rs.num("coverage_time")[r]);
       std::sort(c.ct.begin(), c.ct.end());
       for (std::size_t k = 0; k < by.size(); ++k) c.name += (k ? ", " : ": ") + by[k] + " " + g.key[k];
       curves.push_back(std::move(c));
-      if (std::find(keys.begin(), keys.end(), g.key) == keys.end()) keys.push_back(g.key);
+      if (std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.second == g.key; }) == keys.end())
+        keys.emplace_back(g.key_num, g.key);
     }
   }
   if (curves.size() > ct_distribution_max_curves) {
@@ -77,15 +79,20 @@ FigureOutput ct_distribution(const std::vector<LabelledResults>& sets, const Fig
     throw AnalysisError("ct_distribution: no run in " + names +
                         " reached the target (status ok): there are no coverage times to draw");
   }
-  // Groups in natural key order across files; curves by group, then file.
+  // Groups in key order across files (numbers by value, text in natural
+  // order, as group_rows); curves by group, then file.
   std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) {
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (natural_less(a[i], b[i])) return true;
-      if (natural_less(b[i], a[i])) return false;
+    for (std::size_t i = 0; i < a.second.size(); ++i) {
+      const double x = a.first[i], y = b.first[i];
+      if (!std::isnan(x) && !std::isnan(y) && x != y) return x < y;
+      if (natural_less(a.second[i], b.second[i])) return true;
+      if (natural_less(b.second[i], a.second[i])) return false;
     }
     return false;
   });
-  for (Curve& c : curves) c.group = std::size_t(std::find(keys.begin(), keys.end(), c.key) - keys.begin());
+  for (Curve& c : curves)
+    c.group = std::size_t(
+        std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.second == c.key; }) - keys.begin());
   std::stable_sort(curves.begin(), curves.end(),
                    [](const Curve& a, const Curve& b) { return std::pair(a.group, a.file) < std::pair(b.group, b.file); });
   double tmax = 0;
@@ -97,7 +104,7 @@ FigureOutput ct_distribution(const std::vector<LabelledResults>& sets, const Fig
   for (const char* h : {"label", "runs", "ok", "not_ok_share", "coverage_time", "cumulative_share"})
     csv.header.push_back(h);
   LinePlot p;
-  p.title = "Coverage-time distribution (ECDF; each curve tops out at its ok share)";
+  p.title = "Coverage-time distributions (ECDF)";
   p.xlabel = "coverage time (s)";
   p.ylabel = "runs that reached the target (%)";
   p.y_range = {0.0, 100.0};

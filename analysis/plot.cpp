@@ -133,8 +133,7 @@ void outside_legend(mglGraph& gr, const Frame& f, const std::vector<LegendEntry>
 // A title over the whole canvas, then the plot's cell of `share` of the width.
 void title_and_cell(mglGraph& gr, const std::string& title, double share) {
   gr.SetFontSize(3.2);
-  gr.SubPlot(1, 1, 0, "<>_^");
-  if (!title.empty()) gr.Title(literal(title).c_str(), "", -1.2 * std::min(1.0, 40.0 / double(title.size())));
+  if (!title.empty()) gr.Title(literal(title).c_str(), "", -1.2 * std::min(1.0, 48.0 / double(title.size())));
   gr.MultiPlot(100, 1, 0, int(share * 100), 1, "<_^");
 }
 
