@@ -67,8 +67,8 @@ FigureOutput ct_distribution(const std::vector<LabelledResults>& sets, const Fig
   }
   if (curves.size() > ct_distribution_max_curves) {
     throw AnalysisError("ct_distribution: " + std::to_string(curves.size()) + " curves (" +
-                        std::to_string(sets.size()) + " file(s) x the groups of --by " +
-                        (by.empty() ? "-" : opt.by) + "); at most " + std::to_string(ct_distribution_max_curves) +
+                        std::to_string(sets.size()) + " file(s) x the groups of --by " + (by.empty() ? "-" : opt.by) +
+                        "); at most " + std::to_string(ct_distribution_max_curves) +
                         " fit one figure: narrow the rows with --where or group by fewer columns");
   }
   std::size_t ok_total = 0;
@@ -91,10 +91,11 @@ FigureOutput ct_distribution(const std::vector<LabelledResults>& sets, const Fig
     return false;
   });
   for (Curve& c : curves)
-    c.group = std::size_t(
-        std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.second == c.key; }) - keys.begin());
-  std::stable_sort(curves.begin(), curves.end(),
-                   [](const Curve& a, const Curve& b) { return std::pair(a.group, a.file) < std::pair(b.group, b.file); });
+    c.group = std::size_t(std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.second == c.key; }) -
+                          keys.begin());
+  std::stable_sort(curves.begin(), curves.end(), [](const Curve& a, const Curve& b) {
+    return std::pair(a.group, a.file) < std::pair(b.group, b.file);
+  });
   double tmax = 0;
   for (const Curve& c : curves)
     if (!c.ct.empty()) tmax = std::max(tmax, c.ct.back());

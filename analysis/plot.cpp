@@ -187,7 +187,8 @@ RenderReport render(const HeatmapPlot& p, const std::string& path, ImageSize siz
   }
   if (p.mark) {
     LabelSide side = p.mark->side;
-    if (side == LabelSide::automatic) side = choose_label_side(f.fx(p.mark->x), f.fy(p.mark->y), p.mark->label.size(), 1.0, {});
+    if (side == LabelSide::automatic)
+      side = choose_label_side(f.fx(p.mark->x), f.fy(p.mark->y), p.mark->label.size(), 1.0, {});
     put_mark(gr, *p.mark, side, f, 1.0, true, rep);
   }
   save(gr, path);
@@ -232,8 +233,8 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
       x.a[i] = s.x[i], y.a[i] = s.y[i];
       lines.back().emplace_back(f.fx(s.x[i]), f.fy(s.y[i]));
     }
-    const std::string pen = s.colour >= 0 ? line_pen(std::size_t(s.colour), std::size_t(std::max(0, s.dash)))
-                                          : series_pen(k);
+    const std::string pen =
+        s.colour >= 0 ? line_pen(std::size_t(s.colour), std::size_t(std::max(0, s.dash))) : series_pen(k);
     gr.Plot(x, y, pen.c_str());
     rep.pens.push_back(pen);
     if (!s.name.empty()) legend.push_back({s.name, pen});

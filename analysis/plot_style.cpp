@@ -11,15 +11,24 @@ namespace chaosweep {
 
 const char* to_string(LabelSide s) {
   switch (s) {
-    case LabelSide::automatic: return "automatic";
-    case LabelSide::right: return "right";
-    case LabelSide::left: return "left";
-    case LabelSide::above: return "above";
-    case LabelSide::below: return "below";
-    case LabelSide::above_right: return "above_right";
-    case LabelSide::below_right: return "below_right";
-    case LabelSide::above_left: return "above_left";
-    case LabelSide::below_left: return "below_left";
+    case LabelSide::automatic:
+      return "automatic";
+    case LabelSide::right:
+      return "right";
+    case LabelSide::left:
+      return "left";
+    case LabelSide::above:
+      return "above";
+    case LabelSide::below:
+      return "below";
+    case LabelSide::above_right:
+      return "above_right";
+    case LabelSide::below_right:
+      return "below_right";
+    case LabelSide::above_left:
+      return "above_left";
+    case LabelSide::below_left:
+      return "below_left";
   }
   return "?";
 }
@@ -54,8 +63,7 @@ std::string heat_colour(double t) {
   const double f = t - i;
   char buf[16];
   int rgb[3];
-  for (int k = 0; k < 3; ++k)
-    rgb[k] = int(std::lround(255.0 * (stops[i][k] + f * (stops[i + 1][k] - stops[i][k]))));
+  for (int k = 0; k < 3; ++k) rgb[k] = int(std::lround(255.0 * (stops[i][k] + f * (stops[i + 1][k] - stops[i][k]))));
   std::snprintf(buf, sizeof buf, "{x%02X%02X%02X}", rgb[0], rgb[1], rgb[2]);
   return buf;
 }
@@ -86,14 +94,29 @@ LabelBox label_box(LabelSide side, double fx, double fy, std::size_t chars, doub
   double x0 = fx + gap, y0 = fy - h / 2;  // right
   switch (side) {
     case LabelSide::automatic:
-    case LabelSide::right: break;
-    case LabelSide::left: x0 = fx - gap - w; break;
-    case LabelSide::above: x0 = fx - w / 2, y0 = fy + gap; break;
-    case LabelSide::below: x0 = fx - w / 2, y0 = fy - gap - h; break;
-    case LabelSide::above_right: y0 = fy + gap; break;
-    case LabelSide::below_right: y0 = fy - gap - h; break;
-    case LabelSide::above_left: x0 = fx - gap - w, y0 = fy + gap; break;
-    case LabelSide::below_left: x0 = fx - gap - w, y0 = fy - gap - h; break;
+    case LabelSide::right:
+      break;
+    case LabelSide::left:
+      x0 = fx - gap - w;
+      break;
+    case LabelSide::above:
+      x0 = fx - w / 2, y0 = fy + gap;
+      break;
+    case LabelSide::below:
+      x0 = fx - w / 2, y0 = fy - gap - h;
+      break;
+    case LabelSide::above_right:
+      y0 = fy + gap;
+      break;
+    case LabelSide::below_right:
+      y0 = fy - gap - h;
+      break;
+    case LabelSide::above_left:
+      x0 = fx - gap - w, y0 = fy + gap;
+      break;
+    case LabelSide::below_left:
+      x0 = fx - gap - w, y0 = fy - gap - h;
+      break;
   }
   return {x0, y0, x0 + w, y0 + h};
 }
@@ -119,9 +142,9 @@ LabelBox place_label(LabelSide side, double fx, double fy, std::size_t chars, do
 
 LabelSide choose_label_side(double fx, double fy, std::size_t chars, double scale,
                             const std::vector<std::vector<std::pair<double, double>>>& lines) {
-  static constexpr LabelSide order[] = {LabelSide::right,      LabelSide::below_right, LabelSide::above_left,
-                                        LabelSide::left,       LabelSide::above_right, LabelSide::below_left,
-                                        LabelSide::above,      LabelSide::below};
+  static constexpr LabelSide order[] = {LabelSide::right, LabelSide::below_right, LabelSide::above_left,
+                                        LabelSide::left,  LabelSide::above_right, LabelSide::below_left,
+                                        LabelSide::above, LabelSide::below};
   LabelSide best = LabelSide::right;
   long best_hits = -1;
   bool best_inside = false;

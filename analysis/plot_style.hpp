@@ -58,7 +58,7 @@ LabelSide choose_label_side(double fx, double fy, std::size_t chars, double scal
 // A legend right of the plot, drawn in the plot's own coordinates beyond
 // its right edge: columns of rows, filled column by column.
 struct LegendLayout {
-  double plot_width = 1;   // share of the canvas width for the plot and its legend's MultiPlot cell
+  double plot_width = 1;    // share of the canvas width for the plot and its legend's MultiPlot cell
   double text_size = -0.7;  // MathGL Puts size
   std::size_t rows = 0, columns = 0;
   double row = 0;           // row step, share of the axes' height

@@ -61,7 +61,7 @@ TEST(PlotStyle, LegendLayoutSplitsManyEntriesIntoColumnsAndLeavesThePlotRoom) {
   EXPECT_GE(many.columns, 2u);
   EXPECT_GE(many.rows * many.columns, 47u);
   EXPECT_LT(many.rows * (many.columns - 1), 47u);  // no empty column
-  EXPECT_LE(many.row * double(many.rows), 1.0);     // the rows fit the axes' height
+  EXPECT_LE(many.row * double(many.rows), 1.0);    // the rows fit the axes' height
   for (const LegendLayout& l : {few, many}) {
     EXPECT_GE(l.plot_width, 0.45);
     EXPECT_LE(l.plot_width, 0.9);
@@ -185,7 +185,8 @@ class TwoResultSets : public ::testing::Test {
 
 TEST_F(TwoResultSets, FileLabelsAreTheShortestDistinctNames) {
   EXPECT_EQ(file_labels({"out/a.h5", "out/b.h5"}), (std::vector<std::string>{"a", "b"}));
-  EXPECT_EQ(file_labels({"out/a/results.h5", "out/b/results.h5"}), (std::vector<std::string>{"a/results", "b/results"}));
+  EXPECT_EQ(file_labels({"out/a/results.h5", "out/b/results.h5"}),
+            (std::vector<std::string>{"a/results", "b/results"}));
   EXPECT_EQ(file_labels({"x/a/r.h5", "y/a/r.h5"}), (std::vector<std::string>{"x/a/r.h5", "y/a/r.h5"}));
 }
 
@@ -205,8 +206,7 @@ TEST_F(TwoResultSets, CtDistributionCsvHoldsEachCurvesStepsUpToItsOkShare) {
   EXPECT_EQ(out.lines[0], "a/results: label x (3/4 ok): 75.0% reached the target, median CT 200 s");
   EXPECT_TRUE(std::filesystem::exists(out.image));
   // --where applies to each file.
-  const FigureOutput only_y =
-      make_per_file_figure("ct_distribution", files(), {"label=y"}, opt_, dir_.file("y.png"));
+  const FigureOutput only_y = make_per_file_figure("ct_distribution", files(), {"label=y"}, opt_, dir_.file("y.png"));
   EXPECT_EQ(only_y.lines.size(), 2u);
 }
 
