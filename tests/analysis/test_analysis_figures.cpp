@@ -2,6 +2,7 @@
 // heatmap cells, the mark and its label's side, the legend's place, axis
 // labels, the order of groups, and figure ct_distribution's data and errors.
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <cmath>
 #include <filesystem>
@@ -117,6 +118,31 @@ TEST(PlotStyle, TheMarkIsARedDotWithItsLabelOffTheCurveAndInsideTheFrame) {
   // A side given is kept.
   p.mark->side = LabelSide::above_left;
   EXPECT_EQ(render(p, dir.file("m.png"), {320, 240}).label_side, LabelSide::above_left);
+}
+
+// Pixels of a PNG that are clearly red (the mark; no default pen is red
+// for a single blue line).
+std::size_t red_pixels(const std::string& path) {
+  png_image img{};
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, path.c_str())) return 0;
+  img.format = PNG_FORMAT_RGB;
+  std::vector<unsigned char> px(PNG_IMAGE_SIZE(img));
+  if (!png_image_finish_read(&img, nullptr, px.data(), 0, nullptr)) return 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i + 2 < px.size(); i += 3) n += px[i] > 200 && px[i + 1] < 60 && px[i + 2] < 60;
+  return n;
+}
+
+TEST(PlotStyle, TheMarkIsDrawnRedInTheImage) {
+  TempDir dir;
+  LinePlot p;
+  p.series.push_back({"", {0, 10}, {0, 10}});
+  render(p, dir.file("plain.png"), {320, 240});
+  EXPECT_EQ(red_pixels(dir.file("plain.png")), 0u);
+  p.mark = PlotMark{5, 5, "here"};
+  render(p, dir.file("marked.png"), {320, 240});
+  EXPECT_GT(red_pixels(dir.file("marked.png")), 4u);  // a dot of a few pixels at this size
 }
 
 TEST(Grouping, TextKeysComeInNaturalOrder) {
