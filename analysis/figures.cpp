@@ -86,9 +86,10 @@ FigureOutput heatmap_figure(const ResultSet& rs, const std::string& xcol, const 
 FigureOutput fig6a(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
   for (const char* c : {"A", "B", "C"}) (void)rs.num(c);
   const auto m = mark_or_default(opt.mark);
-  return heatmap_figure(rs, "A", "C", "min", "Fig. 6a: minimum coverage time over B",
-                        PlotMark{m[0], m[2], "(A, C) = (" + format_number(m[0]) + ", " + format_number(m[2]) + ")"},
-                        opt, path);
+  return heatmap_figure(
+      rs, "A", "C", "min", "Fig. 6a: minimum coverage time over B",
+      PlotMark{m[0], m[2], "(A, C) = (" + format_number(m[0]) + ", " + format_number(m[2]) + ")", opt.mark_label}, opt,
+      path);
 }
 
 // ------------------------------------------------------------------ fig6b
@@ -165,7 +166,7 @@ FigureOutput fig6b(const ResultSet& rs, const FigureOptions& opt, const std::str
   p.y_range = {0.0, 100.0};
   if (!std::isinf(mk.ct))
     p.mark = PlotMark{mk.ct, 100.0 * within / n,
-                      tuple_text(mk.a, mk.b, mk.c) + ": " + fmt_fixed(100.0 * within / n, 1) + "%"};
+                      tuple_text(mk.a, mk.b, mk.c) + ": " + fmt_fixed(100.0 * within / n, 1) + "%", opt.mark_label};
   csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;

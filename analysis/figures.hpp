@@ -12,16 +12,17 @@
 namespace chaosweep {
 
 struct FigureOptions {
-  std::string x, y;                // heatmap: the two axes
-  std::string stat = "min";        // heatmap, line: statistic (grouping.hpp)
-  bool stat_default = true;        // --stat not given (line then takes the median)
-  std::vector<double> mark;        // fig6a/fig6b: the marked (A, B, C)
-  double bound = 0;                // fig6b: time bound, s (0: the runs' max_time)
-  std::vector<std::int64_t> runs;  // trajectory, coverage: run ids
-  std::string by;                  // coverage: one run (the median) per value of this column;
-                                   // ct_distribution: group columns, comma-separated
-  int bins = 360;                  // seed002_limit: orientation bins
-  int policy = 0;                  // seed002_limit: 0 the mixture, i the i-th policy alone
+  std::string x, y;                             // heatmap: the two axes
+  std::string stat = "min";                     // heatmap, line: statistic (grouping.hpp)
+  bool stat_default = true;                     // --stat not given (line then takes the median)
+  std::vector<double> mark;                     // fig6a/fig6b: the marked (A, B, C)
+  LabelSide mark_label = LabelSide::automatic;  // fig6a/fig6b: where the mark's label goes
+  double bound = 0;                             // fig6b: time bound, s (0: the runs' max_time)
+  std::vector<std::int64_t> runs;               // trajectory, coverage: run ids
+  std::string by;                               // coverage: one run (the median) per value of this column;
+                                                // ct_distribution: group columns, comma-separated
+  int bins = 360;                               // seed002_limit: orientation bins
+  int policy = 0;                               // seed002_limit: 0 the mixture, i the i-th policy alone
   ImageSize size;
 };
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "analysis/plot.hpp"
+#include "analysis/result_set.hpp"
 
 namespace chaosweep {
 
@@ -31,6 +32,16 @@ const char* to_string(LabelSide s) {
       return "below_left";
   }
   return "?";
+}
+
+LabelSide parse_label_side(const std::string& s) {
+  std::string names;
+  for (int i = 0; i <= int(LabelSide::below_left); ++i) {
+    const auto side = LabelSide(i);
+    if (s == to_string(side)) return side;
+    names += (i ? ", " : "") + std::string(to_string(side));
+  }
+  throw AnalysisError("--mark-label '" + s + "': expected one of " + names);
 }
 
 std::string line_pen(std::size_t colour, std::size_t dash) {

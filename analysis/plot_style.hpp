@@ -15,6 +15,8 @@ struct LinePlot;
 // Where a mark's label sits relative to its point.
 enum class LabelSide { automatic, right, left, above, below, above_right, below_right, above_left, below_left };
 const char* to_string(LabelSide s);
+// "automatic", "right", ..., "below_left"; throws AnalysisError naming --mark-label and the allowed names.
+LabelSide parse_label_side(const std::string& s);
 
 // 8 colours x 6 dash styles: distinct pens for up to line_style_count lines;
 // beyond that they repeat (a legend of more lines is unreadable anyway).

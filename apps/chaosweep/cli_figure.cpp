@@ -33,7 +33,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "              over the map (computed; --bins)\n"
       "Example: chaosweep figure fig6a out/fig6/results.h5 -o out/fig6/fig6a.png");
   struct Opts {
-    std::string name, out, mark, size = "800x600";
+    std::string name, out, mark, mark_label = "automatic", size = "800x600";
     std::vector<std::string> where;
     std::vector<std::string> files;
     FigureOptions fig;
@@ -48,6 +48,10 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   auto* stat = cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic, " + names_or(statistic_names()))
                    ->capture_default_str();
   cmd->add_option("--mark", o->mark, "fig6a/fig6b: the tuple to mark, A,B,C");
+  cmd->add_option("--mark-label", o->mark_label,
+                  "fig6a/fig6b: where the mark's label goes: automatic (inside the frame, off the curve), right, "
+                  "left, above, below, above_right, below_right, above_left, below_left")
+      ->capture_default_str();
   cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
   cmd->add_option("--by", o->fig.by,
@@ -62,6 +66,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
     action = [o]() -> int {
       return run_reporting<AnalysisError>("figure", [&]() -> int {
         o->fig.size = parse_image_size(o->size);
+        o->fig.mark_label = parse_label_side(o->mark_label);
         check_output_free(o->out, o->force);
         check_output_free(csv_beside(o->out), o->force, "-o (the CSV beside the image)");
         for (const std::string& v : split_list(o->mark)) {

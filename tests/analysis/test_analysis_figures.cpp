@@ -145,6 +145,22 @@ TEST(PlotStyle, TheMarkIsDrawnRedInTheImage) {
   EXPECT_GT(red_pixels(dir.file("marked.png")), 4u);  // a dot of a few pixels at this size
 }
 
+TEST(PlotStyle, MarkLabelSidesParseByNameAndOthersAreRefused) {
+  for (int i = 0; i <= int(LabelSide::below_left); ++i)
+    EXPECT_EQ(parse_label_side(to_string(LabelSide(i))), LabelSide(i));
+  try {
+    parse_label_side("sideways");
+    FAIL() << "no error";
+  } catch (const AnalysisError& e) {
+    EXPECT_NE(std::string(e.what()).find("--mark-label 'sideways': expected one of automatic, right,"),
+              std::string::npos)
+        << e.what();
+  }
+  const auto r = test::run_chaosweep("figure cheb_lyapunov --mark-label up -o /nonexistent/x.png");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--mark-label 'up'"), std::string::npos) << r.err;
+}
+
 TEST(Grouping, TextKeysComeInNaturalOrder) {
   EXPECT_TRUE(natural_less("2", "12"));
   EXPECT_FALSE(natural_less("12", "2"));
