@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "analysis/column_labels.hpp"
+#include "analysis/ct_distribution.hpp"
 #include "analysis/grouping.hpp"
 #include "analysis/named_list.hpp"
 #include "analysis/papers/bouncing_paper.hpp"
@@ -58,9 +60,11 @@ FigureOutput heatmap_figure(const ResultSet& rs, const std::string& xcol, const 
   (void)group_statistic(rs, {}, stat);  // an unknown statistic fails before any work
   HeatmapPlot p;
   p.title = title;
-  p.xlabel = xcol;
-  p.ylabel = ycol;
+  p.xlabel = axis_label(xcol);
+  p.ylabel = axis_label(ycol);
+  const bool of_ct = stat != "ok_rate" && stat != "runs";
   p.zlabel = stat == "ok_rate" ? "ok rate" : stat == "runs" ? "runs" : stat + " CT (s)";
+  p.empty_label = of_ct ? "grey: no run there reached the target (or none ran)" : "grey: no runs there";
   p.xs = distinct_sorted(xv, rows);
   p.ys = distinct_sorted(yv, rows);
   p.z.assign(p.xs.size() * p.ys.size(), nan);
@@ -82,9 +86,10 @@ FigureOutput heatmap_figure(const ResultSet& rs, const std::string& xcol, const 
 FigureOutput fig6a(const ResultSet& rs, const FigureOptions& opt, const std::string& path) {
   for (const char* c : {"A", "B", "C"}) (void)rs.num(c);
   const auto m = mark_or_default(opt.mark);
-  return heatmap_figure(rs, "A", "C", "min", "Fig. 6a: minimum coverage time over B",
-                        PlotMark{m[0], m[2], "(A, C) = (" + format_number(m[0]) + ", " + format_number(m[2]) + ")"},
-                        opt, path);
+  return heatmap_figure(
+      rs, "A", "C", "min", "Fig. 6a: minimum coverage time over B",
+      PlotMark{m[0], m[2], "(A, C) = (" + format_number(m[0]) + ", " + format_number(m[2]) + ")", opt.mark_label}, opt,
+      path);
 }
 
 // ------------------------------------------------------------------ fig6b
@@ -161,7 +166,7 @@ FigureOutput fig6b(const ResultSet& rs, const FigureOptions& opt, const std::str
   p.y_range = {0.0, 100.0};
   if (!std::isinf(mk.ct))
     p.mark = PlotMark{mk.ct, 100.0 * within / n,
-                      tuple_text(mk.a, mk.b, mk.c) + ": " + fmt_fixed(100.0 * within / n, 1) + "%"};
+                      tuple_text(mk.a, mk.b, mk.c) + ": " + fmt_fixed(100.0 * within / n, 1) + "%", opt.mark_label};
   csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
   return out;
@@ -305,8 +310,8 @@ FigureOutput line_figure(const ResultSet& rs, const FigureOptions& opt, const st
   const std::string stat = opt.stat == "min" && opt.stat_default ? "median" : opt.stat;
   LinePlot p;
   p.title = stat + " of " + opt.y + " over " + opt.x;
-  p.xlabel = opt.x;
-  p.ylabel = opt.y;
+  p.xlabel = axis_label(opt.x);
+  p.ylabel = stat + " " + axis_label(opt.y);
   TextTable csv;
   csv.header = {opt.by.empty() ? "series" : opt.by, opt.x, stat + "_" + opt.y, "runs"};
   std::vector<Group> series;
@@ -396,8 +401,9 @@ FigureOutput cheb_lyapunov(const FigureOptions& opt, const std::string& path) {
     eq7.x.push_back(k), eq7.y.push_back(c);
     csv.add_row({std::to_string(k), fixed_cell(a, 5), fixed_cell(b, 5), fixed_cell(c, 5), fixed_cell(std::log(k), 5)});
   }
+  conj.colour = 1, conj.dash = 2;  // dashed: the raw map's line (the same values) shows through
   p.series = {std::move(raw), std::move(conj), std::move(eq7)};
-  p.mark = PlotMark{6, std::log(6.0), "k = 6: ln 6 = 1.7918 (paper: 3.2147 after the transform)"};
+  p.mark = PlotMark{6, std::log(6.0), "ln 6 = 1.7918 (paper: 3.2147)"};
   FigureOutput out{path, csv_beside(path), {}};
   csv.write_file(out.csv, TableFormat::csv);
   render(p, path, opt.size);
@@ -423,6 +429,7 @@ FigureOutput seed002_limit(const FigureOptions& opt, const std::string& path) {
   p.xlabel = "x (m)";
   p.ylabel = "y (m)";
   p.zlabel = "pi / uniform";
+  p.empty_label = "grey: obstacle cells";
   for (int i = 0; i < g.nx; ++i) p.xs.push_back((i + 0.5) * g.cell);
   for (int j = 0; j < g.ny; ++j) p.ys.push_back((j + 0.5) * g.cell);
   p.z.assign(std::size_t(g.nx * g.ny), nan);
@@ -458,6 +465,7 @@ struct FigureKind {
   std::string name;
   bool needs_results;
   FigureOutput (*make)(const ResultSet&, const FigureOptions&, const std::string&);
+  bool per_file = false;  // a curve per file: make_per_file_figure
 };
 
 // Every figure `chaosweep figure` knows: its dispatch, its list of names and
@@ -470,6 +478,11 @@ const std::vector<FigureKind>& figure_kinds() {
       {"line", true, line_figure},
       {"trajectory", true, trajectory},
       {"coverage", true, coverage},
+      {"ct_distribution", true,
+       [](const ResultSet& rs, const FigureOptions& o, const std::string& p) {
+         return ct_distribution({LabelledResults{"results", rs}}, o, p);
+       },
+       true},
       {"cheb_histogram", false,
        [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_histogram(o, p); }},
       {"cheb_lyapunov", false,
@@ -493,6 +506,24 @@ std::string csv_beside(const std::string& image_path) {
 const std::vector<std::string>& figure_names() {
   static const std::vector<std::string> names = names_of(figure_kinds());
   return names;
+}
+
+bool figure_per_file(const std::string& name) { return figure_kind(name).per_file; }
+
+FigureOutput make_per_file_figure(const std::string& name, const std::vector<std::string>& files,
+                                  const std::vector<std::string>& where, const FigureOptions& opt,
+                                  const std::string& image_path) {
+  if (!figure_kind(name).per_file) throw AnalysisError("figure " + name + " reads the files' rows together");
+  check_image_path(image_path);
+  if (files.empty()) throw AnalysisError("give one or more result files (.h5)");
+  const std::vector<std::string> labels = file_labels(files);
+  std::vector<LabelledResults> sets;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    ResultSet rs = ResultSet::load({files[i]});
+    if (rs.rows() == 0) throw AnalysisError(files[i] + " holds no runs");
+    sets.push_back({labels[i], where.empty() ? std::move(rs) : rs.where(where)});
+  }
+  return ct_distribution(sets, opt, image_path);
 }
 
 FigureOutput make_figure(const std::string& name, const ResultSet& rs, const FigureOptions& opt,

@@ -11,9 +11,17 @@ std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string
                               const std::vector<std::size_t>& rows) {
   for (const std::string& k : keys)
     if (!rs.has(k)) (void)rs.num(k);  // throws, naming the column
-  // Ordering key: per column, a number or a string.
+  // Ordering key: per column, a number or a string (in natural order).
   using Part = std::pair<double, std::string>;
-  std::map<std::vector<Part>, Group> by;
+  auto less = [](const std::vector<Part>& a, const std::vector<Part>& b) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].first != b[i].first) return a[i].first < b[i].first;
+      if (natural_less(a[i].second, b[i].second)) return true;
+      if (natural_less(b[i].second, a[i].second)) return false;
+    }
+    return false;
+  };
+  std::map<std::vector<Part>, Group, decltype(less)> by(less);
   for (std::size_t r : rows) {
     std::vector<Part> order;
     for (const std::string& k : keys) {
@@ -33,6 +41,32 @@ std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string
   std::vector<Group> out;
   for (auto& [k, g] : by) out.push_back(std::move(g));
   return out;
+}
+
+bool natural_less(const std::string& a, const std::string& b) {
+  auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (digit(a[i]) && digit(b[j])) {
+      // Compare the digit runs as numbers: without leading zeros, the
+      // shorter is smaller, then digit by digit.
+      std::size_t ie = i, je = j;
+      while (ie < a.size() && digit(a[ie])) ++ie;
+      while (je < b.size() && digit(b[je])) ++je;
+      std::size_t i0 = i, j0 = j;
+      while (i0 + 1 < ie && a[i0] == '0') ++i0;
+      while (j0 + 1 < je && b[j0] == '0') ++j0;
+      if (ie - i0 != je - j0) return ie - i0 < je - j0;
+      const int c = a.compare(i0, ie - i0, b, j0, je - j0);
+      if (c != 0) return c < 0;
+      i = ie, j = je;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i, ++j;
+    }
+  }
+  if ((a.size() - i) != (b.size() - j)) return a.size() - i < b.size() - j;
+  return a < b;  // equal but for leading zeros: a fixed order
 }
 
 double quantile(std::vector<double> v, double q) {

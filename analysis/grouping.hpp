@@ -15,9 +15,13 @@ struct Group {
 };
 
 // Groups `rows` by `keys` (no keys: one group of every row). Groups come in
-// key order: numeric keys by value, text keys lexicographically.
+// key order: numeric keys by value, text keys in natural order (numbers in
+// the text by value: "run 2" before "run 12").
 std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string>& keys,
                               const std::vector<std::size_t>& rows);
+
+// Text order with runs of digits compared as numbers ("a2" < "a12").
+bool natural_less(const std::string& a, const std::string& b);
 
 // Quantile q in [0, 1] of v by linear interpolation between order statistics
 // (Hyndman-Fan type 7, numpy's default); NaN for an empty v.

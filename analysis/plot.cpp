@@ -75,14 +75,73 @@ void frame(mglGraph& gr, const std::string& title, const std::string& xlabel, co
   if (!title.empty()) gr.Title(literal(title).c_str(), "", title.size() > 40 ? -1.1 : -1.4);
   gr.Box();
   gr.Axis("xy");
-  gr.Label('x', literal(xlabel).c_str(), 0);
-  gr.Label('y', literal(ylabel).c_str(), 0);
+  // Long labels (a column's meaning and unit) smaller, to fit beside the axis.
+  gr.Label('x', literal(xlabel).c_str(), 0, xlabel.size() > 30 ? "size -0.8" : "");
+  gr.Label('y', literal(ylabel).c_str(), 0, ylabel.size() > 20 ? "size -0.75" : "");
 }
 
-void put_mark(mglGraph& gr, const PlotMark& m) {
-  gr.Mark(mglPoint(m.x, m.y), "k*");
-  gr.Mark(mglPoint(m.x, m.y), "wo");
-  if (!m.label.empty()) gr.Puts(mglPoint(m.x, m.y), mglPoint(m.x + 1, m.y), literal(" " + m.label).c_str(), ":L", -0.8);
+struct Frame {
+  double x0, x1, y0, y1;
+  double fx(double x) const { return (x - x0) / (x1 - x0); }
+  double fy(double y) const { return (y - y0) / (y1 - y0); }
+};
+
+constexpr const char* mark_style = "r#o";  // a filled red dot, as in the papers
+
+// The mark and its label on the side given (automatic: chosen by the caller);
+// `pad` puts a white box behind the label (over a colour map). z lifts both
+// above the faces (MathGL hides what lies below).
+void put_mark(mglGraph& gr, const PlotMark& m, LabelSide side, const Frame& f, double scale, bool pad,
+              RenderReport& rep) {
+  gr.Mark(mglPoint(m.x, m.y, 0.8), mark_style);
+  rep.mark_style = mark_style;
+  rep.label_side = side;
+  if (m.label.empty()) return;
+  const LabelBox b = place_label(side, f.fx(m.x), f.fy(m.y), m.label.size(), scale);
+  const double bx0 = f.x0 + b.x0 * (f.x1 - f.x0), bx1 = f.x0 + b.x1 * (f.x1 - f.x0);
+  const double by0 = f.y0 + b.y0 * (f.y1 - f.y0), by1 = f.y0 + b.y1 * (f.y1 - f.y0);
+  if (pad) gr.FaceZ(mglPoint(bx0, by0, 0.6), bx1 - bx0, by1 - by0, "w");
+  gr.Puts(mglPoint(bx0, by0 + 0.15 * (by1 - by0), 0.9), literal(m.label).c_str(), ":L", -0.8);
+}
+
+struct LegendEntry {
+  std::string name, pen;
+  bool marker = false;  // drawn as a mark, not a line sample
+};
+
+// The legend right of the axes, in the plot's coordinates beyond its edge
+// (MathGL's own legend stays inside the axes, over the data).
+void outside_legend(mglGraph& gr, const Frame& f, const std::vector<LegendEntry>& entries, const LegendLayout& l,
+                    double z) {
+  gr.SetCut(false);
+  const double w = f.x1 - f.x0, h = f.y1 - f.y0;
+  const double text_h = 0.045 * -l.text_size / 0.8;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const std::size_t c = k / l.rows, r = k % l.rows;
+    const double x = f.x1 + (l.offset + double(c) * l.column_width) * w;
+    const double y = f.y1 - (double(r) + 0.5) * l.row * h;
+    const LegendEntry& e = entries[k];
+    if (e.marker) {
+      gr.Mark(mglPoint(x + 0.5 * l.sample * w, y, z), e.pen.c_str());
+    } else {
+      gr.Line(mglPoint(x, y, z), mglPoint(x + l.sample * w, y, z), e.pen.c_str());
+    }
+    gr.Puts(mglPoint(x + 1.3 * l.sample * w, y - 0.4 * text_h * h, z), literal(e.name).c_str(), ":L", l.text_size);
+  }
+}
+
+// A title over the whole canvas, then the plot's cell of `share` of the width.
+void title_and_cell(mglGraph& gr, const std::string& title, double share) {
+  gr.SetFontSize(3.2);
+  // At a fixed place on the canvas (":A"): Title() beside a MultiPlot cell
+  // clipped the top of the text.
+  // About 54 characters fit 800 px at 600 px high; the font grows with the
+  // smaller side of the canvas.
+  const double w = gr.GetWidth(), h = gr.GetHeight();
+  const double fit = 54.0 * (w / 800.0) * (600.0 / std::min(w, h));
+  if (!title.empty())
+    gr.Puts(0.5, 0.94, literal(title).c_str(), ":AC", -1.2 * std::min(1.0, fit / double(title.size())));
+  gr.MultiPlot(100, 1, 0, int(share * 100), 1, "<_^");
 }
 
 }  // namespace
@@ -103,36 +162,47 @@ ImageSize parse_image_size(const std::string& s) {
   return z;
 }
 
-void render(const HeatmapPlot& p, const std::string& path, ImageSize size) {
+RenderReport render(const HeatmapPlot& p, const std::string& path, ImageSize size) {
   const long nx = long(p.xs.size()), ny = long(p.ys.size());
   if (nx < 1 || ny < 1 || p.z.size() != std::size_t(nx * ny)) throw AnalysisError("heatmap: no data to draw");
+  RenderReport rep;
   mglGraph gr(0, size.width, size.height);
-  // Cells centred on the axis values: draw on a grid one wider than the data.
-  mglData z(nx, ny), x(nx), y(ny);
   double zlo = std::numeric_limits<double>::infinity(), zhi = -zlo;
-  for (long j = 0; j < ny; ++j)
-    for (long i = 0; i < nx; ++i) {
-      const double v = p.z[std::size_t(j * nx + i)];
-      z.a[i + nx * j] = std::isnan(v) ? mglNaN : v;
-      if (!std::isnan(v)) zlo = std::min(zlo, v), zhi = std::max(zhi, v);
-    }
-  for (long i = 0; i < nx; ++i) x.a[i] = p.xs[std::size_t(i)];
-  for (long j = 0; j < ny; ++j) y.a[j] = p.ys[std::size_t(j)];
+  for (double v : p.z)
+    if (!std::isnan(v)) zlo = std::min(zlo, v), zhi = std::max(zhi, v);
   if (!(zhi >= zlo)) zlo = 0, zhi = 1;  // every cell empty
-  const auto [x0, x1] = padded(p.xs.front(), p.xs.back());
-  const auto [y0, y1] = padded(p.ys.front(), p.ys.back());
   const auto [c0, c1] = padded(zlo, zhi);
-  gr.SetRanges(x0, x1, y0, y1);
+  // One flat face per cell, its colour the colour bar's at its value: the
+  // cell-to-cell jumps stay visible and square cells stay square.
+  const std::vector<HeatCell> cells = heatmap_cells(p, c0, c1);
+  const Frame f{cells.front().x0, cells.back().x1, cells.front().y0, cells.back().y1};
+  gr.SetRanges(f.x0, f.x1, f.y0, f.y1, -1, 1);
   gr.SetRange('c', c0, c1);
   frame(gr, p.title, p.xlabel, p.ylabel);
-  gr.Dens(x, y, z, "BbcyrR");
+  for (const HeatCell& c : cells) {
+    gr.FaceZ(mglPoint(c.x0, c.y0, -0.5), c.x1 - c.x0, c.y1 - c.y0, c.colour.c_str());
+    ++rep.cells;
+    rep.empty_cells += std::isnan(c.z);
+  }
+  gr.Box();  // the frame over the cells' edges
   gr.Colorbar("BbcyrR>");
-  gr.Puts(mglPoint(x1 + (x1 - x0) * 0.16, y1 + (y1 - y0) * 0.06), literal(p.zlabel).c_str(), ":C", -0.9);
-  if (p.mark) put_mark(gr, *p.mark);
+  gr.Puts(mglPoint(f.x1 + (f.x1 - f.x0) * 0.16, f.y1 + (f.y1 - f.y0) * 0.06), literal(p.zlabel).c_str(), ":C", -0.9);
+  if (rep.empty_cells > 0 && !p.empty_label.empty()) {
+    gr.Puts(mglPoint(f.x0 - (f.x1 - f.x0) * 0.12, f.y0 - (f.y1 - f.y0) * 0.24, 0.9), literal(p.empty_label).c_str(),
+            ":L", -0.8);
+    rep.empty_note = true;
+  }
+  if (p.mark) {
+    LabelSide side = p.mark->side;
+    if (side == LabelSide::automatic)
+      side = choose_label_side(f.fx(p.mark->x), f.fy(p.mark->y), p.mark->label.size(), 1.0, {});
+    put_mark(gr, *p.mark, side, f, 1.0, true, rep);
+  }
   save(gr, path);
+  return rep;
 }
 
-void render(const LinePlot& p, const std::string& path, ImageSize size) {
+RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) {
   double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
   for (const LineSeries& s : p.series)
     for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -141,33 +211,72 @@ void render(const LinePlot& p, const std::string& path, ImageSize size) {
     }
   if (!(xhi >= xlo)) throw AnalysisError("line plot: no data to draw");
   if (p.y_range) ylo = p.y_range->first, yhi = p.y_range->second;
+  RenderReport rep;
+  std::size_t named = 0, longest = 0;
+  for (const LineSeries& s : p.series)
+    if (!s.name.empty()) ++named, longest = std::max(longest, s.name.size());
+  rep.legend_outside = named > 1;
   mglGraph gr(0, size.width, size.height);
   const auto [x0, x1] = padded(xlo, xhi);
   const auto [y0, y1] = padded(ylo, yhi);
+  const LegendLayout lay = legend_layout(named, longest);
+  double scale = 1.0;  // the font relative to the plot: larger in a narrower plot
+  if (rep.legend_outside) {
+    title_and_cell(gr, p.title, lay.plot_width);
+    scale = plot_font_scale(lay.plot_width);
+  }
   gr.SetRanges(x0, x1, y0, y1);
-  frame(gr, p.title, p.xlabel, p.ylabel);
+  frame(gr, rep.legend_outside ? "" : p.title, p.xlabel, p.ylabel);
   gr.Grid("xy", "h");
-  static const char* pens[] = {"b2", "r2", "g2", "m2", "c2", "k2", "q2", "u2"};
+  const Frame f{x0, x1, y0, y1};
+  std::vector<std::vector<std::pair<double, double>>> lines;
+  std::vector<LegendEntry> legend;
   for (std::size_t k = 0; k < p.series.size(); ++k) {
     const LineSeries& s = p.series[k];
     if (s.x.empty()) continue;
     mglData x(long(s.x.size())), y(long(s.y.size()));
-    for (std::size_t i = 0; i < s.x.size(); ++i) x.a[i] = s.x[i], y.a[i] = s.y[i];
-    const char* pen = pens[k % 8];
-    gr.Plot(x, y, pen);
-    if (!s.name.empty()) gr.AddLegend(literal(s.name).c_str(), pen);
+    lines.emplace_back();
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      x.a[i] = s.x[i], y.a[i] = s.y[i];
+      lines.back().emplace_back(f.fx(s.x[i]), f.fy(s.y[i]));
+    }
+    const std::string pen =
+        s.colour >= 0 ? line_pen(std::size_t(s.colour), std::size_t(std::max(0, s.dash))) : series_pen(k);
+    gr.Plot(x, y, pen.c_str());
+    rep.pens.push_back(pen);
+    if (!s.name.empty()) legend.push_back({s.name, pen});
   }
-  if (p.series.size() > 1) gr.Legend(0, "#", "");
-  if (p.mark) put_mark(gr, *p.mark);
+  if (p.mark) {
+    LabelSide side = p.mark->side;
+    if (side == LabelSide::automatic)
+      side = choose_label_side(f.fx(p.mark->x), f.fy(p.mark->y), p.mark->label.size(), scale, lines);
+    put_mark(gr, *p.mark, side, f, scale, false, rep);
+  }
+  if (rep.legend_outside) outside_legend(gr, f, legend, lay, 0);
   save(gr, path);
+  return rep;
 }
 
 void render(const MapPlot& p, const std::string& path, ImageSize size) {
   if (!(p.lx > 0 && p.ly > 0)) throw AnalysisError("map plot: empty map");
   mglGraph gr(0, size.width, size.height);
+  // The title over the whole width, the map left, its legend right of it
+  // (inside, it covered the path).
+  std::vector<LegendEntry> legend{{"path", "b"}};
+  if (!p.transit_paths.empty()) legend.push_back({"transit", "r2"});
+  if (!p.zone_midpoints.empty()) legend.push_back({"zone midpoint", "m+", true});
+  if (!p.subgoals.empty()) legend.push_back({"sub-goal", "k.", true});
+  if (!p.regions.empty()) legend.push_back({"coverage rectangle", "G3"});
+  if (!p.transitions.empty()) legend.push_back({"transition rectangle", "m;2"});
+  legend.push_back({"start", "g#o", true});
+  legend.push_back({"end", "r#s", true});
+  std::size_t longest = 0;
+  for (const LegendEntry& e : legend) longest = std::max(longest, e.name.size());
+  const LegendLayout lay = legend_layout(legend.size(), longest);
+  title_and_cell(gr, p.title, lay.plot_width);
   gr.SetRanges(0, p.lx, 0, p.ly, -1, 1);
   gr.Aspect(p.lx, p.ly);
-  frame(gr, p.title, "x (m)", "y (m)");
+  frame(gr, "", "x (m)", "y (m)");
   // Covered cells, light; obstacles, dark; then the path on top.
   for (int j = 0; j < p.ny; ++j)
     for (int i = 0; i < p.nx; ++i)
@@ -195,15 +304,7 @@ void render(const MapPlot& p, const std::string& path, ImageSize size) {
   for (const Box2& b : p.transitions) outline(b, "m;2");
   gr.Mark(mglPoint(p.start.first, p.start.second, 0.7), "g#o");
   gr.Mark(mglPoint(p.end.first, p.end.second, 0.7), "r#s");
-  gr.AddLegend("path", "b");
-  if (!p.transit_paths.empty()) gr.AddLegend("transit", "r2");
-  if (!p.zone_midpoints.empty()) gr.AddLegend("zone midpoint", "m+");
-  if (!p.subgoals.empty()) gr.AddLegend("sub-goal", "k.");
-  if (!p.regions.empty()) gr.AddLegend("coverage rectangle", "G3");
-  if (!p.transitions.empty()) gr.AddLegend("transition rectangle", "m;2");
-  gr.AddLegend("start", "g#o");
-  gr.AddLegend("end", "r#s");
-  gr.Legend(1, "#", "size -0.75");
+  outside_legend(gr, Frame{0, p.lx, 0, p.ly}, legend, lay, 0.7);
   save(gr, path);
 }
 

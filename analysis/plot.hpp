@@ -6,25 +6,33 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/plot_style.hpp"
+
 namespace chaosweep {
 
+// A red dot with a label beside it; `automatic` puts the label where it
+// stays inside the frame and crosses the fewest lines.
 struct PlotMark {
   double x, y;
   std::string label;  // printed beside the marker
+  LabelSide side = LabelSide::automatic;
 };
 
-// A colour map of z over a rectangular grid of axis values (NaN: no data,
-// left blank).
+// A colour map of z over a rectangular grid of axis values: one flat cell
+// per value (no interpolation); NaN cells grey, explained by empty_label.
 struct HeatmapPlot {
   std::string title, xlabel, ylabel, zlabel;
   std::vector<double> xs, ys;  // increasing
   std::vector<double> z;       // z[j * xs.size() + i]
   std::optional<PlotMark> mark;
+  std::string empty_label = "grey: no data";  // printed under the plot when a cell is NaN
 };
 
+// colour, dash: indices for line_pen (plot_style.hpp); -1: by position.
 struct LineSeries {
   std::string name;
   std::vector<double> x, y;
+  int colour = -1, dash = -1;
 };
 
 struct LinePlot {
@@ -60,11 +68,22 @@ struct ImageSize {
 // "WIDTHxHEIGHT" (each 100..8000); throws AnalysisError naming --size.
 ImageSize parse_image_size(const std::string& s);
 
+// What render() drew, for tests: cells (and the empty ones among them), the
+// lines' pens, the mark's style and its label's side, the legend's place.
+struct RenderReport {
+  std::size_t cells = 0, empty_cells = 0;
+  bool empty_note = false;  // empty_label printed
+  std::vector<std::string> pens;
+  std::string mark_style;
+  LabelSide label_side = LabelSide::automatic;
+  bool legend_outside = false;
+};
+
 // Writes the figure to `path`; the format follows the extension: .png, .svg,
 // .pdf or .eps (AnalysisError naming the allowed ones otherwise). The file
 // appears complete or not at all (written aside, then renamed).
-void render(const HeatmapPlot& p, const std::string& path, ImageSize size);
-void render(const LinePlot& p, const std::string& path, ImageSize size);
+RenderReport render(const HeatmapPlot& p, const std::string& path, ImageSize size);
+RenderReport render(const LinePlot& p, const std::string& path, ImageSize size);
 void render(const MapPlot& p, const std::string& path, ImageSize size);
 
 // The formats render() accepts, for messages and checks before work starts.

@@ -24,13 +24,16 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "              midpoints, covered cells\n"
       "  coverage    coverage vs time of several runs (--run ID, repeatable) or of the median\n"
       "              run of each value of --by COLUMN\n"
+      "  ct_distribution  per file (A.h5 B.h5 ...) and group of --by COL1,COL2: the coverage-time\n"
+      "              distribution (ECDF), each curve topping out at its share of ok runs; at most 12\n"
+      "              curves\n"
       "  cheb_histogram, cheb_lyapunov  seed 001's Chebyshev map: orbit histogram raw and\n"
       "              transformed; Lyapunov exponent over k (computed, no result file)\n"
       "  seed002_limit  seed 002: the best bouncing-policy mixture's limiting distribution\n"
       "              over the map (computed; --bins)\n"
       "Example: chaosweep figure fig6a out/fig6/results.h5 -o out/fig6/fig6a.png");
   struct Opts {
-    std::string name, out, mark, size = "800x600";
+    std::string name, out, mark, mark_label = "automatic", size = "800x600";
     std::vector<std::string> where;
     std::vector<std::string> files;
     FigureOptions fig;
@@ -45,9 +48,15 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   auto* stat = cmd->add_option("--stat", o->fig.stat, "heatmap, line: statistic, " + names_or(statistic_names()))
                    ->capture_default_str();
   cmd->add_option("--mark", o->mark, "fig6a/fig6b: the tuple to mark, A,B,C");
+  cmd->add_option("--mark-label", o->mark_label,
+                  "fig6a/fig6b: where the mark's label goes: automatic (inside the frame, off the curve), right, "
+                  "left, above, below, above_right, below_right, above_left, below_left")
+      ->capture_default_str();
   cmd->add_option("--bound", o->fig.bound, "fig6b: time bound, s")->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
-  cmd->add_option("--by", o->fig.by, "coverage: one run per value of this column; line: one line per value");
+  cmd->add_option("--by", o->fig.by,
+                  "coverage: one run per value of this column; line: one line per value; ct_distribution: a curve "
+                  "per file and value of these columns (comma-separated)");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--bins", o->fig.bins, "seed002_limit: orientation bins")->check(CLI::Range(4, 3600));
   cmd->add_option("--policy", o->fig.policy, "seed002_limit: 0 the best mixture (default), i the i-th policy alone");
@@ -57,6 +66,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
     action = [o]() -> int {
       return run_reporting<AnalysisError>("figure", [&]() -> int {
         o->fig.size = parse_image_size(o->size);
+        o->fig.mark_label = parse_label_side(o->mark_label);
         check_output_free(o->out, o->force);
         check_output_free(csv_beside(o->out), o->force, "-o (the CSV beside the image)");
         for (const std::string& v : split_list(o->mark)) {
@@ -69,7 +79,9 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
         const bool needs = figure_needs_results(o->name);
         if (needs && o->files.empty()) throw AnalysisError("give one or more result files (.h5)");
         const FigureOutput out =
-            make_figure(o->name, needs ? ResultSet::load(o->files).where(o->where) : ResultSet{}, o->fig, o->out);
+            figure_per_file(o->name)
+                ? make_per_file_figure(o->name, o->files, o->where, o->fig, o->out)
+                : make_figure(o->name, needs ? ResultSet::load(o->files).where(o->where) : ResultSet{}, o->fig, o->out);
         for (const std::string& line : out.lines) std::cout << line << "\n";
         std::cout << "wrote " << out.image << " and " << out.csv << "\n";
         return exit_ok;
