@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
 #include "engine/spec/shard.hpp"
+#include "engine/store/h5_merge.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/slurm_dir.hpp"
 
@@ -22,7 +24,19 @@ namespace {
 struct ShardCensus {
   std::vector<int> finished, partial, missing, damaged;
   std::string detail, broken;
+  std::map<int, std::string> identity;  // of each readable shard file: its spec_hash and inputs_hash
 };
+
+// What merge compares between shards (an older file without inputs_hash: "").
+std::string identity_of(const std::string& path) {
+  try {
+    std::string id = read_attribute(path, "spec_hash") + "\t";
+    if (has_attribute(path, "inputs_hash")) id += read_attribute(path, "inputs_hash");
+    return id;
+  } catch (const std::exception&) {
+    return "\t";
+  }
+}
 
 // The rows of a shard file, or -1 with the reason in `why` when it cannot be
 // read (a damaged file: listed, and resubmitted once moved away).
@@ -43,10 +57,19 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
   std::string why;
   const std::string name = "  shard " + std::to_string(k) + ": ";
   if (fs::exists(fs::symlink_status(file, ec))) {
-    const std::int64_t have = rows_of(file.string(), why);
+    std::int64_t have = rows_of(file.string(), why);
     if (have == want) {
-      c.finished.push_back(k);
-      return;
+      // Every row as merge checks it: a shard merge would refuse (a flipped
+      // run_id, a file of another sweep) is damaged, not finished.
+      try {
+        check_shard_file(file.string(), k, plan.tasks, plan.runs);
+        c.finished.push_back(k);
+        c.identity[k] = identity_of(file.string());
+        return;
+      } catch (const std::exception& e) {
+        why = e.what();
+        have = -1;
+      }
     }
     c.damaged.push_back(k);
     c.broken +=
@@ -61,10 +84,33 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
       return;
     }
     c.partial.push_back(k);
+    c.identity[k] = identity_of(part);
     c.detail += name + std::to_string(have) + " of " + std::to_string(want) + " runs\n";
   } else {
     c.missing.push_back(k);
   }
+}
+
+// Shards whose spec_hash or inputs_hash differ from most shards' are of
+// another spec or other environment files (merge refuses to mix them):
+// damaged, to be removed and resubmitted.
+void check_same_sweep(ShardCensus& c, const std::string& dir) {
+  std::map<std::string, int> votes;
+  for (const auto& [k, id] : c.identity) ++votes[id];
+  if (votes.size() < 2) return;
+  const auto most = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+                      return a.second < b.second;
+                    })->first;
+  for (const auto& [k, id] : c.identity) {
+    if (id == most) continue;
+    for (auto* v : {&c.finished, &c.partial}) std::erase(*v, k);
+    c.damaged.push_back(k);
+    const bool finished = fs::exists(shard_file(dir, k));
+    c.broken += "  shard " + std::to_string(k) + ": " + shard_file(dir, k).string() + (finished ? "" : ".partial") +
+                " was made from another spec or other input files than most shards (merge would refuse it); "
+                "remove it, then resubmit\n";
+  }
+  std::sort(c.damaged.begin(), c.damaged.end());
 }
 
 std::string list(const std::vector<int>& v) {
@@ -98,6 +144,7 @@ int run_status(const std::string& dir) {
     const ClusterPlan plan = read_cluster_plan(dir);
     ShardCensus census;
     for (int k = 0; k < plan.tasks; ++k) count_shard(census, dir, plan, k);
+    check_same_sweep(census, dir);
     return report(census, plan, dir);
   } catch (const std::exception& e) {
     std::cerr << "chaosweep status: " << e.what() << "\n";
@@ -112,7 +159,8 @@ void add_status_command(CLI::App& app, std::function<int()>& action) {
       app.add_subcommand("status", "Which shards of a `chaosweep slurm` directory are finished, partial or missing");
   st->footer(
       "Prints one line per shard state and the --array= list of the shards to resubmit\n"
-      "(partial, missing or damaged: a shard file that cannot be read, named with the reason;\n"
+      "(partial, missing or damaged: a shard file that cannot be read, or that merge would refuse\n"
+      "-- a run_id out of order, another shard's or another spec's file -- named with the reason;\n"
       "remove it before resubmitting): sbatch --array=LIST DIR/sweep.sbatch. Exit 0 when every\n"
       "shard is finished, 1 otherwise.");
   auto dir = std::make_shared<std::string>();

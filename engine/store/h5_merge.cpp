@@ -121,8 +121,10 @@ void reclaim(hid_t type, std::vector<unsigned char>& buf) {
 }
 
 // Shard K of N holds run_ids K, K+N, ... in order (a sweep writes them so):
-// any other row means the file is damaged. Reads run_id in blocks.
-void check_run_ids(const Input& in, std::int64_t runs_total) {
+// any other row means the file is damaged. Reads run_id in blocks: every row,
+// or (`every_row` false: a census, which must not read every chunk of a
+// large sweep) the first and the last.
+void check_run_ids(const Input& in, std::int64_t runs_total, bool every_row = true) {
   const std::int64_t want = shard_size(runs_total, in.shard.index, in.shard.count);
   if (std::int64_t(in.rows) > want)
     fail(in.path + " is damaged: it holds " + std::to_string(in.rows) + " rows, but shard " + in.shard.shard + " of " +
@@ -131,8 +133,9 @@ void check_run_ids(const Input& in, std::int64_t runs_total) {
   H5Tinsert(mem.id, "run_id", 0, H5T_NATIVE_INT64);
   std::vector<unsigned char> buf;
   const hsize_t block = hsize_t(1) << 20;
-  for (hsize_t first = 0; first < in.rows; first += block) {
-    const hsize_t n = std::min(block, in.rows - first);
+  const hsize_t step = every_row ? block : std::max<hsize_t>(in.rows - 1, 1);  // rows 0 and rows - 1
+  for (hsize_t first = 0; first < in.rows; first += step) {
+    const hsize_t n = every_row ? std::min(block, in.rows - first) : 1;
     read_rows(in, first, n, buf, mem.id);
     for (hsize_t r = 0; r < n; ++r) {
       std::int64_t id;
@@ -258,6 +261,20 @@ std::string MergeReport::text() const {
          std::to_string(shard_count) + " --resume)";
   }
   return s;
+}
+
+void check_shard_file(const std::string& path, int index, int count, std::int64_t runs_total) {
+  Input in;
+  in.path = path;
+  in.shard = shard_of(path);
+  const std::string want = std::to_string(index) + "/" + std::to_string(count);
+  if (in.shard.shard != want) fail(path + " is shard " + in.shard.shard + ", not " + want + " (of another sweep)");
+  if (in.shard.runs_total != runs_total)
+    fail(path + " has runs_total " + std::to_string(in.shard.runs_total) + ", not the sweep's " +
+         std::to_string(runs_total) + " (of another sweep)");
+  check_result_columns(path);
+  open_input(in, 0);
+  check_run_ids(in, runs_total, false);
 }
 
 MergeReport merge_results(const std::vector<std::string>& paths, const std::string& output) {

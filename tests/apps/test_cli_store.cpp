@@ -400,6 +400,17 @@ TEST(CliReaders, AFifoADeviceOrADirectoryAsAResultFileIsRefusedWithoutBlocking) 
   const auto st = run_chaosweep("status " + tmp.path().string(), "timeout 30");
   EXPECT_EQ(st.exit_code, 1) << st.err;
   EXPECT_TRUE(has(st.out, "is a FIFO, not a result file")) << st.out;
+  // A FIFO as the directory's cluster.toml (status and merge --slurm-dir blocked on it).
+  fs::remove(tmp.file("cluster.toml"));
+  ASSERT_EQ(mkfifo(tmp.file("cluster.toml").c_str(), 0644), 0);
+  for (const std::string& cmd :
+       {"status " + tmp.path().string(), "merge -o " + tmp.file("m.h5") + " --slurm-dir " + tmp.path().string()}) {
+    const auto r = run_chaosweep(cmd, "timeout 30");
+    EXPECT_EQ(r.exit_code, 2) << cmd;
+    EXPECT_TRUE(has(r.err, "cluster.toml: the sweep's cluster.toml is a FIFO (named pipe), not a regular file"))
+        << cmd << "\n"
+        << r.err;
+  }
 }
 
 TEST(CliStatus, ADamagedShardIsNamedAndListedToResubmit) {
@@ -416,6 +427,32 @@ TEST(CliStatus, ADamagedShardIsNamedAndListedToResubmit) {
   EXPECT_TRUE(has(r.out, "damaged  1: 1")) << r.out;
   EXPECT_TRUE(has(r.out, "shard_1.h5 is not an HDF5 file")) << r.out;
   EXPECT_TRUE(has(r.out, "resubmit: --array=1,2")) << r.out;
+}
+
+// A shard file merge would refuse is damaged, not finished: a last run_id
+// with a flipped bit (status reads the first and last rows' run_ids only),
+// a file of another spec, a file of another sweep's shard plan (each with the
+// row count status expects).
+TEST(CliStatus, AShardThatMergeWouldRefuseIsDamagedNotFinished) {
+  TempDir tmp;
+  write_file(tmp.file("cluster.toml"), "spec = '/x.toml'\nname = 'x'\ntasks = 5\nruns = 50\n");
+  for (int k : {0, 1, 4}) write_shard(tmp.file("shard_" + std::to_string(k) + ".h5"), "h", k, 5, 50);
+  poke_i64(tmp.file("shard_1.h5"), "run_id", 9, 46 | (1 << 30));  // its last row
+  write_shard(tmp.file("shard_2.h5"), "other", 2, 5, 50);
+  write_shard(tmp.file("shard_3.h5"), "h", 3, 5, 60, 10);
+  const auto r = run_chaosweep("status " + tmp.path().string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(has(r.out, "finished 2: 0,4")) << r.out;
+  EXPECT_TRUE(has(r.out, "damaged  3: 1,2,3")) << r.out;
+  EXPECT_TRUE(has(r.out, "shard_1.h5 is damaged: row 9 has run_id 1073741870, outside the spec's runs 0..49")) << r.out;
+  EXPECT_TRUE(has(r.out, "shard_2.h5 was made from another spec or other input files than most shards")) << r.out;
+  EXPECT_TRUE(has(r.out, "shard_3.h5 has runs_total 60, not the sweep's 50")) << r.out;
+  EXPECT_TRUE(has(r.out, "resubmit: --array=1,2,3")) << r.out;
+  // The same directory with the damaged shards redone is finished.
+  for (int k : {1, 2, 3}) write_shard(tmp.file("shard_" + std::to_string(k) + ".h5"), "h", k, 5, 50);
+  const auto fixed = run_chaosweep("status " + tmp.path().string());
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.out;
+  EXPECT_TRUE(has(fixed.out, "finished 5: 0,1,2,3,4")) << fixed.out;
 }
 
 TEST(CliSweep, AResumeUnderAnotherSimdTargetRecordsEveryTargetUsed) {
