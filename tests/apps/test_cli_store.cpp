@@ -413,6 +413,25 @@ TEST(CliReaders, AFifoADeviceOrADirectoryAsAResultFileIsRefusedWithoutBlocking) 
   }
 }
 
+// export: a file that is not a result file is bad input (it exited 3).
+TEST(CliExport, AFileThatIsNotAResultFileExits2AndWritesNothing) {
+  TempDir tmp;
+  write_file(tmp.file("junk.h5"), "not a result file");
+  write_hand_made(tmp.file("float.h5"), reader_columns('f'), 5);
+  ASSERT_EQ(mkfifo(tmp.file("fifo.h5").c_str(), 0644), 0);
+  struct Case {
+    std::string file, why;
+  };
+  for (const Case& c : {Case{"junk.h5", "is not an HDF5 file"}, Case{"float.h5", "column 'run_id' is floating-point"},
+                        Case{"fifo.h5", "is a FIFO, not a result file"}}) {
+    const auto r = run_chaosweep("export " + tmp.file(c.file) + " -o " + tmp.file("x.csv"), "timeout 30");
+    EXPECT_EQ(r.exit_code, 2) << c.file << "\n" << r.err;
+    EXPECT_TRUE(has(r.err, c.why)) << r.err;
+    EXPECT_FALSE(fs::exists(tmp.file("x.csv")));
+    EXPECT_FALSE(fs::exists(tmp.file("x.csv.tmp")));
+  }
+}
+
 TEST(CliStatus, ADamagedShardIsNamedAndListedToResubmit) {
   TempDir tmp;
   write_file(tmp.file("cluster.toml"), "spec = '/x.toml'\nname = 'x'\ntasks = 3\nruns = 30\n");
