@@ -120,6 +120,10 @@ struct SlurmJob {
 SlurmJob checked_job(const SlurmOptions& o) {
   SlurmJob job{load_sweep_spec(o.spec, spec_overrides(o.sets)), {}, o.job_name};
   const SweepSpec& spec = job.spec;
+  // Every map, as the tasks' sweeps will load it (from this directory: the
+  // scripts cd here), so a bad one stops here, not in every task.
+  EnvironmentCache maps;
+  preload_environments(spec, maps);
   if (o.tasks > spec.size())
     throw BadSlurmValue("--tasks: " + std::to_string(o.tasks) + " is more than the spec's " +
                         std::to_string(spec.size()) + " runs (a task runs at least one): give --tasks in [1, " +
@@ -164,6 +168,7 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
                                                    {"CPUS", std::to_string(o.cpus)},
                                                    {"EXTRA", extra},
                                                    {"DIR", shell_quote(dir.string())},
+                                                   {"WORKDIR", shell_quote(fs::current_path().string())},
                                                    {"CHAOSWEEP", shell_quote(self_path())},
                                                    {"SPEC", shell_quote(spec_path)},
                                                    {"SETS", sets},
