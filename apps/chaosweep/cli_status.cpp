@@ -27,12 +27,12 @@ struct ShardCensus {
   std::map<int, std::string> identity;  // of each readable shard file: its spec_hash and inputs_hash
 };
 
-// What merge compares between shards (an older file without inputs_hash: "").
+// What merge compares between shards, as check_shard_file returns it (an
+// older file without inputs_hash: "").
 std::string identity_of(const std::string& path) {
   try {
-    std::string id = read_attribute(path, "spec_hash") + "\t";
-    if (has_attribute(path, "inputs_hash")) id += read_attribute(path, "inputs_hash");
-    return id;
+    return read_attribute(path, "spec_hash") + "\t" +
+           (has_attribute(path, "inputs_hash") ? read_attribute(path, "inputs_hash") : std::string());
   } catch (const std::exception&) {
     return "\t";
   }
@@ -59,12 +59,11 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
   if (fs::exists(fs::symlink_status(file, ec))) {
     std::int64_t have = rows_of(file.string(), why);
     if (have == want) {
-      // Every row as merge checks it: a shard merge would refuse (a flipped
-      // run_id, a file of another sweep) is damaged, not finished.
+      // Its attributes and columns as merge checks them (not its rows: that
+      // is merge's pass over the sweep): a file of another sweep is damaged.
       try {
-        check_shard_file(file.string(), k, plan.tasks, plan.runs);
+        c.identity[k] = check_shard_file(file.string(), k, plan.tasks, plan.runs);
         c.finished.push_back(k);
-        c.identity[k] = identity_of(file.string());
         return;
       } catch (const std::exception& e) {
         why = e.what();
@@ -160,7 +159,7 @@ void add_status_command(CLI::App& app, std::function<int()>& action) {
   st->footer(
       "Prints one line per shard state and the --array= list of the shards to resubmit\n"
       "(partial, missing or damaged: a shard file that cannot be read, or that merge would refuse\n"
-      "-- a run_id out of order, another shard's or another spec's file -- named with the reason;\n"
+      "as another shard's, another sweep's or another spec's file -- named with the reason;\n"
       "remove it before resubmitting): sbatch --array=LIST DIR/sweep.sbatch. Exit 0 when every\n"
       "shard is finished, 1 otherwise.");
   auto dir = std::make_shared<std::string>();

@@ -39,15 +39,29 @@ struct ShardOf {
   std::int64_t runs_total = 0;
 };
 
+// Attribute `name` of the open `file` as text (read_attribute's, through one
+// open of the file): "" when absent and not `required`.
+std::string attribute(hid_t file, const std::string& path, const char* name, bool required = true) {
+  Handle attr{-1, H5Aclose};
+  H5E_BEGIN_TRY { attr.id = H5Aopen(file, name, H5P_DEFAULT); }
+  H5E_END_TRY;
+  if (attr.id < 0) {
+    if (!required) return {};
+    fail(path + " has no attribute '" + name + "' (not a chaosweep result file?)");
+  }
+  return h5::attribute_text(attr.id, path, name);
+}
+
 ShardOf shard_of(const std::string& path) {
   ShardOf s;
-  s.spec_hash = read_attribute(path, "spec_hash");  // throws naming the file
-  s.shard = read_attribute(path, "shard");
+  const Handle file{open_result_file(path), H5Fclose};  // throws naming the file
+  s.spec_hash = attribute(file.id, path, "spec_hash");
+  s.shard = attribute(file.id, path, "shard");
   try {
-    s.inputs_hash = read_attribute(path, "inputs_hash");
+    s.inputs_hash = attribute(file.id, path, "inputs_hash", false);
   } catch (const std::exception&) {
   }
-  const std::string total = read_attribute(path, "runs_total");
+  const std::string total = attribute(file.id, path, "runs_total");
   char tail = 0;
   if (std::sscanf(s.shard.c_str(), "%d/%d%c", &s.index, &s.count, &tail) != 2 || s.index < 0 || s.count < 1 ||
       s.index >= s.count)
@@ -121,10 +135,8 @@ void reclaim(hid_t type, std::vector<unsigned char>& buf) {
 }
 
 // Shard K of N holds run_ids K, K+N, ... in order (a sweep writes them so):
-// any other row means the file is damaged. Reads run_id in blocks: every row,
-// or (`every_row` false: a census, which must not read every chunk of a
-// large sweep) the first and the last.
-void check_run_ids(const Input& in, std::int64_t runs_total, bool every_row = true) {
+// any other row means the file is damaged. Reads run_id in blocks.
+void check_run_ids(const Input& in, std::int64_t runs_total) {
   const std::int64_t want = shard_size(runs_total, in.shard.index, in.shard.count);
   if (std::int64_t(in.rows) > want)
     fail(in.path + " is damaged: it holds " + std::to_string(in.rows) + " rows, but shard " + in.shard.shard + " of " +
@@ -133,9 +145,8 @@ void check_run_ids(const Input& in, std::int64_t runs_total, bool every_row = tr
   H5Tinsert(mem.id, "run_id", 0, H5T_NATIVE_INT64);
   std::vector<unsigned char> buf;
   const hsize_t block = hsize_t(1) << 20;
-  const hsize_t step = every_row ? block : std::max<hsize_t>(in.rows - 1, 1);  // rows 0 and rows - 1
-  for (hsize_t first = 0; first < in.rows; first += step) {
-    const hsize_t n = every_row ? std::min(block, in.rows - first) : 1;
+  for (hsize_t first = 0; first < in.rows; first += block) {
+    const hsize_t n = std::min(block, in.rows - first);
     read_rows(in, first, n, buf, mem.id);
     for (hsize_t r = 0; r < n; ++r) {
       std::int64_t id;
@@ -263,18 +274,15 @@ std::string MergeReport::text() const {
   return s;
 }
 
-void check_shard_file(const std::string& path, int index, int count, std::int64_t runs_total) {
-  Input in;
-  in.path = path;
-  in.shard = shard_of(path);
+std::string check_shard_file(const std::string& path, int index, int count, std::int64_t runs_total) {
+  const ShardOf s = shard_of(path);
   const std::string want = std::to_string(index) + "/" + std::to_string(count);
-  if (in.shard.shard != want) fail(path + " is shard " + in.shard.shard + ", not " + want + " (of another sweep)");
-  if (in.shard.runs_total != runs_total)
-    fail(path + " has runs_total " + std::to_string(in.shard.runs_total) + ", not the sweep's " +
-         std::to_string(runs_total) + " (of another sweep)");
+  if (s.shard != want) fail(path + " is shard " + s.shard + ", not " + want + " (of another sweep)");
+  if (s.runs_total != runs_total)
+    fail(path + " has runs_total " + std::to_string(s.runs_total) + ", not the sweep's " + std::to_string(runs_total) +
+         " (of another sweep)");
   check_result_columns(path);
-  open_input(in, 0);
-  check_run_ids(in, runs_total, false);
+  return s.spec_hash + "\t" + s.inputs_hash;
 }
 
 MergeReport merge_results(const std::vector<std::string>& paths, const std::string& output) {
