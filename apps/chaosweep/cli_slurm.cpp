@@ -155,7 +155,9 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
   if (!o.mem.empty()) extra += "\n#SBATCH --mem=" + o.mem;
   const std::string array =
       "0-" + std::to_string(o.tasks - 1) + (o.concurrency > 0 ? "%" + std::to_string(o.concurrency) : "");
-  const std::string spec_path = fs::absolute(o.spec).string();
+  // Resolved now: a path through the directory slurm ran in (../x.toml)
+  // must not need that directory on the node.
+  const std::string spec_path = fs::weakly_canonical(fs::absolute(o.spec)).string();
   std::string sets;  // each a quoted word: the value reaches the sweep as given
   for (const std::string& s : o.sets) sets += " --set " + shell_quote(s);
   for (const char* name : {"sweep", "merge"}) {

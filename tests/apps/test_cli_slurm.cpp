@@ -169,6 +169,18 @@ TEST(CliSlurm, ARelativeEnvironmentPathIsFoundFromTheDirectorySlurmRanIn) {
   ASSERT_EQ(single.exit_code, 0) << single.err;
   const auto cmp = run_chaosweep("compare " + tmp.file("run/results.h5") + " " + tmp.file("single.h5"));
   EXPECT_EQ(cmp.exit_code, 0) << cmp.out << cmp.err;
+  // Where that directory is gone (a node that cannot see it), a spec of
+  // absolute paths still runs.
+  fs::create_directories(tmp.file("gone"));
+  write_file(tmp.file("specs/abs.toml"), "[fixed]\nenv = \"" + tmp.file("work/maps/env1.toml") +
+                                             "\"\nsize = 10\nsr = 2\nmax_time = 5\n[axes]\nA = [0.4, 0.5]\n");
+  ASSERT_EQ(run_chaosweep("slurm ../specs/abs.toml --tasks 1 -o ../run2", "cd " + shell_quote(tmp.file("gone")) + " &&")
+                .exit_code,
+            0);
+  fs::remove_all(tmp.file("gone"));
+  EXPECT_EQ(run_script(tmp.file("run2/sweep.sbatch"), "SLURM_ARRAY_TASK_ID=0", tmp.path().string()), 0)
+      << read_file(tmp.file("script.log"));
+  EXPECT_TRUE(fs::exists(tmp.file("run2/shard_0.h5")));
 }
 
 TEST(CliMerge, SlurmDirMergesTheShardsOfTheDirectoryAndNamesAMissingOne) {
