@@ -88,7 +88,11 @@ int export_command(const ExportFlags& o) {
       if (format.empty()) throw ExportError("-o " + o.out + ": give a .csv or .jsonl file, or --format csv|jsonl");
     }
     check_output_free(o.out, o.force);
-    check_result_columns(o.file);  // names a file that is not a result file
+    try {
+      check_result_columns(o.file);  // names a file that is not a result file
+    } catch (const std::runtime_error& e) {
+      throw ExportError(e.what());  // bad input (exit 2), not an I/O failure
+    }
     const std::string tmp = o.out + ".tmp";
     {
       std::ofstream os(tmp);

@@ -108,6 +108,10 @@ struct SlurmJob {
 SlurmJob checked_job(const SlurmOptions& o) {
   SlurmJob job{load_sweep_spec(o.spec, spec_overrides(o.sets)), {}, o.job_name};
   const SweepSpec& spec = job.spec;
+  // Every map, as the tasks' sweeps will load it (from this directory: the
+  // scripts cd here), so a bad one stops here, not in every task.
+  EnvironmentCache maps;
+  preload_environments(spec, maps);
   if (o.tasks > spec.size())
     throw BadSlurmValue("--tasks: " + std::to_string(o.tasks) + " is more than the spec's " +
                         std::to_string(spec.size()) + " runs (a task runs at least one): give --tasks in [1, " +
@@ -139,7 +143,9 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
   if (!o.mem.empty()) extra += "\n#SBATCH --mem=" + o.mem;
   const std::string array =
       "0-" + std::to_string(o.tasks - 1) + (o.concurrency > 0 ? "%" + std::to_string(o.concurrency) : "");
-  const std::string spec_path = fs::absolute(o.spec).string();
+  // Resolved now: a path through the directory slurm ran in (../x.toml)
+  // must not need that directory on the node.
+  const std::string spec_path = fs::weakly_canonical(fs::absolute(o.spec)).string();
   std::string sets;  // each a quoted word: the value reaches the sweep as given
   for (const std::string& s : o.sets) sets += " --set " + shell_quote(s);
   for (const char* name : {"sweep", "merge"}) {
@@ -152,6 +158,7 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
                                                    {"CPUS", std::to_string(o.cpus)},
                                                    {"EXTRA", extra},
                                                    {"DIR", shell_quote(dir.string())},
+                                                   {"WORKDIR", shell_quote(fs::current_path().string())},
                                                    {"CHAOSWEEP", shell_quote(self_path())},
                                                    {"SPEC", shell_quote(spec_path)},
                                                    {"SETS", sets},

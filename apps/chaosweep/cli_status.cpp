@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "apps/chaosweep/slurm_query.hpp"
 #include "apps/chaosweep/slurm_values.hpp"
 #include "engine/spec/shard.hpp"
+#include "engine/store/h5_merge.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/output_lock.hpp"
 #include "engine/store/slurm_dir.hpp"
@@ -27,6 +29,7 @@ namespace {
 struct ShardCensus {
   std::vector<int> finished, running, pending, partial, missing, damaged;
   std::string running_detail, pending_detail, detail, missing_detail, broken;
+  std::map<int, std::string> identity;  // of each readable shard file: its spec_hash and inputs_hash
 };
 
 // What is known of a shard's writer: its lock and SLURM's word on its task.
@@ -34,6 +37,17 @@ struct Writer {
   LockProbe lock;
   const TaskState* task = nullptr;  // null: SLURM not asked, or it knows no such task
 };
+
+// What merge compares between shards, as check_shard_file returns it (an
+// older file without inputs_hash: "").
+std::string identity_of(const std::string& path) {
+  try {
+    return read_attribute(path, "spec_hash") + "\t" +
+           (has_attribute(path, "inputs_hash") ? read_attribute(path, "inputs_hash") : std::string());
+  } catch (const std::exception&) {
+    return "\t";
+  }
+}
 
 // The rows of a shard file, or -1 with the reason in `why` when it cannot be
 // read (a damaged file: listed, and resubmitted once moved away).
@@ -75,10 +89,18 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
   const std::string name = "  shard " + std::to_string(k) + ": ";
   const bool live = w.lock.held || (w.task && slurm_state_live(w.task->state));
   if (fs::exists(fs::symlink_status(file, ec))) {
-    const std::int64_t have = rows_of(file.string(), why);
+    std::int64_t have = rows_of(file.string(), why);
     if (have == want) {
-      c.finished.push_back(k);
-      return;
+      // Its attributes and columns as merge checks them (not its rows: that
+      // is merge's pass over the sweep): a file of another sweep is damaged.
+      try {
+        c.identity[k] = check_shard_file(file.string(), k, plan.tasks, plan.runs);
+        c.finished.push_back(k);
+        return;
+      } catch (const std::exception& e) {
+        why = e.what();
+        have = -1;
+      }
     }
     c.damaged.push_back(k);
     c.broken +=
@@ -105,11 +127,34 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
           name + (rows.empty() ? "" : rows + ", ") + live_words(w, k) + "\n";
   } else if (has_part) {
     c.partial.push_back(k);
+    c.identity[k] = identity_of(part);
     c.detail += name + rows + "; " + dead_reason(w, k) + "\n";
   } else {
     c.missing.push_back(k);
     if (w.task) c.missing_detail += name + dead_reason(w, k) + "\n";
   }
+}
+
+// Shards whose spec_hash or inputs_hash differ from most shards' are of
+// another spec or other environment files (merge refuses to mix them):
+// damaged, to be removed and resubmitted.
+void check_same_sweep(ShardCensus& c, const std::string& dir) {
+  std::map<std::string, int> votes;
+  for (const auto& [k, id] : c.identity) ++votes[id];
+  if (votes.size() < 2) return;
+  const auto most = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+                      return a.second < b.second;
+                    })->first;
+  for (const auto& [k, id] : c.identity) {
+    if (id == most) continue;
+    for (auto* v : {&c.finished, &c.partial}) std::erase(*v, k);
+    c.damaged.push_back(k);
+    const bool finished = fs::exists(shard_file(dir, k));
+    c.broken += "  shard " + std::to_string(k) + ": " + shard_file(dir, k).string() + (finished ? "" : ".partial") +
+                " was made from another spec or other input files than most shards (merge would refuse it); "
+                "remove it, then resubmit\n";
+  }
+  std::sort(c.damaged.begin(), c.damaged.end());
 }
 
 std::string list(const std::vector<int>& v) {
@@ -171,6 +216,7 @@ int run_status(const std::string& dir) {
       if (const auto it = slurm.tasks.find(k); it != slurm.tasks.end()) w.task = &it->second;
       count_shard(census, dir, plan, k, w);
     }
+    check_same_sweep(census, dir);
     return report(census, plan, dir);
   } catch (const std::exception& e) {
     std::cerr << "chaosweep status: " << e.what() << "\n";
@@ -185,8 +231,9 @@ void add_status_command(CLI::App& app, std::function<int()>& action) {
       "status", "Which shards of a `chaosweep slurm` directory are finished, running, pending, partial or missing");
   st->footer(
       "Prints one line per shard state and the --array= list of the shards to resubmit: partial,\n"
-      "missing or damaged (a shard file that cannot be read, named with the reason; remove it\n"
-      "before resubmitting): sbatch --array=LIST DIR/sweep.sbatch. A shard whose output lock is\n"
+      "missing or damaged (a shard file that cannot be read, or that merge would refuse as another\n"
+      "shard's, another sweep's or another spec's file, named with the reason; remove it before\n"
+      "resubmitting): sbatch --array=LIST DIR/sweep.sbatch. A shard whose output lock is\n"
       "held, or whose task SLURM (squeue; sacct, or scontrol without accounting) reports pending or\n"
       "running, is live and not resubmitted; a dead one is named with its job's state and exit code,\n"
       "or 'no job and no lock'. Without squeue on PATH, or jobs recorded by --submit, the locks\n"

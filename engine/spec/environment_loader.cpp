@@ -254,7 +254,7 @@ Environment parse_file(const std::string& path, double size_x, double size_y, st
   } catch (const InputFileError& e) {
     throw std::runtime_error(std::string("environment ") + e.what());
   }
-  if (source) *source = {path, fnv1a64(text)};
+  if (source) *source = {recorded_path(path), fnv1a64(text)};
   return parse_text(text, path, size_x, size_y, clutter_seed);
 }
 

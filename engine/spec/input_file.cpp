@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 namespace chaosweep {
 
@@ -34,6 +35,12 @@ void check_regular(const struct stat& st, const std::string& path, const std::st
 }
 
 }  // namespace
+
+std::string recorded_path(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path a = std::filesystem::absolute(path, ec);
+  return ec ? path : a.lexically_normal().string();
+}
 
 std::string read_input_file(const std::string& path, const std::string& what) {
   struct stat before {};

@@ -16,9 +16,14 @@ struct InputFileError : std::runtime_error {
 
 // A file read as input, as provenance records it.
 struct InputRecord {
-  std::string path;        // as opened
+  std::string path;        // absolute (recorded_path), or a built-in map's name
   std::uint64_t hash = 0;  // fnv1a64 (run_hash.hpp) of its content
 };
+
+// `path` made absolute (and normal, symlinks kept) as provenance records it:
+// an environment path is found from the working directory, so a relative one
+// would not say later which file was read.
+std::string recorded_path(const std::string& path);
 
 // The largest spec or environment file read. Far above any real one (the
 // shipped files are a few kB; 100,000 obstacles written one a line take

@@ -680,7 +680,7 @@ SweepSpec parse_extended(const std::string& extends, const std::string& source_n
   chain.push_back(link);
   SweepSpec parent = parse_spec(parent_text, path, slash == std::string::npos ? "." : path.substr(0, slash), chain);
   chain.pop_back();
-  parent.files.insert(parent.files.begin(), InputRecord{path, fnv1a64(parent_text)});
+  parent.files.insert(parent.files.begin(), InputRecord{recorded_path(path), fnv1a64(parent_text)});
   return parent;
 }
 
@@ -824,7 +824,7 @@ SweepSpec load_sweep_spec(const std::string& path, const std::vector<SpecOverrid
     for (const SpecOverride& o : overrides) listed += (listed.empty() ? "" : " ") + o.text();
     throw SpecError(std::string(e.what()) + " (the spec with --set " + listed + ")");
   }
-  s.files.insert(s.files.begin(), InputRecord{path, fnv1a64(text)});
+  s.files.insert(s.files.begin(), InputRecord{recorded_path(path), fnv1a64(text)});
   if (s.name.empty()) {
     std::string stem = path.substr(slash == std::string::npos ? 0 : slash + 1);
     s.name = stem.substr(0, stem.rfind('.'));

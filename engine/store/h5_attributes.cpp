@@ -49,8 +49,10 @@ bool is_bool_enum(hid_t t) {
   return H5Tequal(t, b.id) > 0;
 }
 
+}  // namespace
+
 // Value of the attribute `attr` of `path` as text.
-std::string attribute_text(hid_t attr, const std::string& path, const std::string& name) {
+std::string h5::attribute_text(hid_t attr, const std::string& path, const std::string& name) {
   Handle type{H5Aget_type(attr), H5Tclose};
   Handle space{H5Aget_space(attr), H5Sclose};
   auto bad = [&] { h5::input_fail(path + ": attribute '" + name + "' is not one text, number or boolean"); };
@@ -104,6 +106,8 @@ std::string attribute_text(hid_t attr, const std::string& path, const std::strin
   if (rc < 0) bad();
   return out;
 }
+
+namespace {
 
 void delete_if_present(hid_t loc, const std::string& name) {
   if (H5Aexists(loc, name.c_str()) > 0) H5Adelete(loc, name.c_str());
@@ -197,7 +201,7 @@ std::string read_attribute(const std::string& path, const std::string& name) {
   H5E_BEGIN_TRY { attr.id = H5Aopen(file.id, name.c_str(), H5P_DEFAULT); }
   H5E_END_TRY;
   if (attr.id < 0) h5::input_fail(path + " has no attribute '" + name + "' (not a chaosweep result file?)");
-  return attribute_text(attr.id, path, name);
+  return h5::attribute_text(attr.id, path, name);
 }
 
 bool has_attribute(const std::string& path, const std::string& name) {

@@ -36,5 +36,8 @@ hid_t fixed_text_type(std::size_t size);
 hid_t variable_text_type();
 // HDF5 has no boolean: h5py's is an enum FALSE = 0, TRUE = 1 over int8.
 hid_t bool_type();
+// Value of the attribute `attr` of `path` (named `name`) as text: numbers in
+// decimal, booleans "true"/"false" (read_attribute).
+std::string attribute_text(hid_t attr, const std::string& path, const std::string& name);
 
 }  // namespace chaosweep::h5

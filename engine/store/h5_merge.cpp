@@ -39,15 +39,29 @@ struct ShardOf {
   std::int64_t runs_total = 0;
 };
 
+// Attribute `name` of the open `file` as text (read_attribute's, through one
+// open of the file): "" when absent and not `required`.
+std::string attribute(hid_t file, const std::string& path, const char* name, bool required = true) {
+  Handle attr{-1, H5Aclose};
+  H5E_BEGIN_TRY { attr.id = H5Aopen(file, name, H5P_DEFAULT); }
+  H5E_END_TRY;
+  if (attr.id < 0) {
+    if (!required) return {};
+    fail(path + " has no attribute '" + name + "' (not a chaosweep result file?)");
+  }
+  return h5::attribute_text(attr.id, path, name);
+}
+
 ShardOf shard_of(const std::string& path) {
   ShardOf s;
-  s.spec_hash = read_attribute(path, "spec_hash");  // throws naming the file
-  s.shard = read_attribute(path, "shard");
+  const Handle file{open_result_file(path), H5Fclose};  // throws naming the file
+  s.spec_hash = attribute(file.id, path, "spec_hash");
+  s.shard = attribute(file.id, path, "shard");
   try {
-    s.inputs_hash = read_attribute(path, "inputs_hash");
+    s.inputs_hash = attribute(file.id, path, "inputs_hash", false);
   } catch (const std::exception&) {
   }
-  const std::string total = read_attribute(path, "runs_total");
+  const std::string total = attribute(file.id, path, "runs_total");
   char tail = 0;
   if (std::sscanf(s.shard.c_str(), "%d/%d%c", &s.index, &s.count, &tail) != 2 || s.index < 0 || s.count < 1 ||
       s.index >= s.count)
@@ -258,6 +272,17 @@ std::string MergeReport::text() const {
          std::to_string(shard_count) + " --resume)";
   }
   return s;
+}
+
+std::string check_shard_file(const std::string& path, int index, int count, std::int64_t runs_total) {
+  const ShardOf s = shard_of(path);
+  const std::string want = std::to_string(index) + "/" + std::to_string(count);
+  if (s.shard != want) fail(path + " is shard " + s.shard + ", not " + want + " (of another sweep)");
+  if (s.runs_total != runs_total)
+    fail(path + " has runs_total " + std::to_string(s.runs_total) + ", not the sweep's " + std::to_string(runs_total) +
+         " (of another sweep)");
+  check_result_columns(path);
+  return s.spec_hash + "\t" + s.inputs_hash;
 }
 
 MergeReport merge_results(const std::vector<std::string>& paths, const std::string& output) {

@@ -30,4 +30,14 @@ std::string merge_temp_path(const std::string& output);
 // inputs are not intact shards of one sweep. The caller holds OUT's lock.
 MergeReport merge_results(const std::vector<std::string>& inputs, const std::string& output);
 
+// Throws std::runtime_error naming `path` and what is wrong unless its
+// attributes and columns make it shard `index` of `count` of a
+// `runs_total`-run sweep, as merge checks each input: its shard and
+// runs_total attributes and the columns compare and table need (not its
+// rows: merge reads every run_id, which a census must not, since even one
+// row costs a whole chunk's decompression). `chaosweep status` checks
+// finished shards so: one of another sweep is damaged, not finished.
+// Returns what merge compares between shards: spec_hash and inputs_hash.
+std::string check_shard_file(const std::string& path, int index, int count, std::int64_t runs_total);
+
 }  // namespace chaosweep

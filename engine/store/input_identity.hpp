@@ -2,7 +2,7 @@
 // What a sweep's rows depend on besides the engine: the spec's text (the
 // extended specs' included, spec_hash) and the content of every environment
 // file its runs load. A result file records each file read (attribute
-// input_files: kind, content hash, name, path; one line each) and one hash of
+// input_files: kind, content hash, name, absolute path; one line each) and one hash of
 // them all (inputs_hash); --resume and merge compare inputs_hash, so rows made
 // on an edited map are never mixed with rows made on the original.
 #include <string>

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
+#include "engine/spec/input_file.hpp"
 #include "engine/spec/toml.hpp"
 
 namespace chaosweep {
@@ -15,17 +15,28 @@ ClusterPlan read_cluster_plan(const fs::path& dir) {
   const fs::path file = dir / "cluster.toml";
   if (!fs::exists(file))
     throw std::runtime_error(dir.string() + " has no cluster.toml: not written by chaosweep slurm");
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  check_toml_text(text.str());
-  const toml::table t = toml::parse(text.str(), file.string());
+  // A regular file of bounded size only (a FIFO in its place blocked status
+  // and merge --slurm-dir forever).
+  std::string text;
+  try {
+    text = read_input_file(file.string(), "the sweep's cluster.toml");
+  } catch (const InputFileError& e) {
+    throw std::runtime_error(e.what());
+  }
+  check_toml_text(text);
+  const toml::table t = toml::parse(text, file.string());
   ClusterPlan p;
   p.spec = t["spec"].value_or(std::string());
   p.name = t["name"].value_or(std::string());
-  p.tasks = int(t["tasks"].value_or(0));
+  const std::int64_t tasks = t["tasks"].value_or(std::int64_t(0));
   p.runs = t["runs"].value_or(std::int64_t(0));
-  if (p.tasks < 1) throw std::runtime_error(file.string() + ": 'tasks' must be >= 1");
+  // chaosweep slurm writes 1 <= tasks <= runs, at most 1e6.
+  if (tasks < 1 || tasks > 1000000)
+    throw std::runtime_error(file.string() + ": 'tasks' must be in [1, 1000000], not " + std::to_string(tasks));
+  if (p.runs < 1 || p.runs > (std::int64_t(1) << 62))
+    throw std::runtime_error(file.string() + ": 'runs' must be a run count in [1, 2^62], not " +
+                             std::to_string(p.runs));
+  p.tasks = int(tasks);
   return p;
 }
 

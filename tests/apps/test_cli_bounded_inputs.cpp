@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/rows/run_hash.hpp"
 #include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
 
@@ -166,6 +167,30 @@ TEST(CliPlan, ABillionRunSpecIsPlannedWithoutVisitingEveryRun) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(has(r.out, "runs        1000000000  (1000 x 1000 x 1000)")) << r.out;
   EXPECT_TRUE(has(r.out, "work        at most 5e+10 integration steps")) << r.out;
+}
+
+// Provenance names each file read by its absolute path (an environment path
+// is found from the working directory, so a relative one would not say later
+// which file it was) with its content hash: the spec, the spec it extends
+// (found from the spec's directory) and the environment.
+TEST(CliSweep, InputFilesRecordEachFilesAbsolutePathAndContentHash) {
+  TempDir tmp;
+  fs::create_directories(tmp.file("sub"));
+  fs::create_directories(tmp.file("maps"));
+  const std::string env = "obstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n";
+  const std::string parent = tiny_sweep_on("maps/../maps/env1.toml");
+  const std::string child = "[sweep]\nextends = \"parent.toml\"\n[fixed]\nlabel = \"child\"\n";
+  write_file(tmp.file("maps/env1.toml"), env);
+  write_file(tmp.file("sub/parent.toml"), parent);
+  write_file(tmp.file("sub/child.toml"), child);
+  const auto r = run_chaosweep("sweep sub/child.toml -q -o r.h5", "cd " + tmp.path().string() + " &&");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  using chaosweep::fnv1a64, chaosweep::hex64;
+  const std::string want = "spec\t" + hex64(fnv1a64(child)) + "\t" + tmp.file("sub/child.toml") + "\t" +
+                           tmp.file("sub/child.toml") + "\nextends\t" + hex64(fnv1a64(parent)) + "\t" +
+                           tmp.file("sub/parent.toml") + "\t" + tmp.file("sub/parent.toml") + "\nenv\t" +
+                           hex64(fnv1a64(env)) + "\tmaps/../maps/env1.toml\t" + tmp.file("maps/env1.toml") + "\n";
+  EXPECT_EQ(chaosweep::read_attribute(tmp.file("r.h5"), "input_files"), want);
 }
 
 TEST(CliMerge, ShardsMadeWithDifferentEnvironmentFilesAreRefusedNamingTheFile) {

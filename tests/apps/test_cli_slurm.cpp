@@ -139,6 +139,50 @@ TEST(CliSlurm, TheScriptsRunWithQuotedPathsAndTheMergeListsNoShard) {
   EXPECT_FALSE(fs::exists(tmp.file("pwned2")));
 }
 
+// An environment named by a relative path is found from the working
+// directory: slurm checks it from the directory it runs in, and the tasks'
+// script runs there too, wherever the job starts (sbatch starts it where it
+// was submitted from). A map slurm cannot find is refused before anything is
+// written (every task would have failed).
+TEST(CliSlurm, ARelativeEnvironmentPathIsFoundFromTheDirectorySlurmRanIn) {
+  TempDir tmp;
+  fs::create_directories(tmp.file("work/maps"));
+  fs::create_directories(tmp.file("specs"));
+  write_file(tmp.file("work/maps/env1.toml"), "obstacles = [{ x = 0.4, y = 0.4, w = 0.2, h = 0.2 }]\n");
+  write_file(tmp.file("specs/s.toml"),
+             "[fixed]\nenv = \"maps/env1.toml\"\nsize = 10\nsr = 2\nmax_time = 5\n[axes]\nA = [0.4, 0.5, 0.6]\n");
+  const auto lost =
+      run_chaosweep("slurm specs/s.toml --tasks 3 -o run", "cd " + shell_quote(tmp.path().string()) + " &&");
+  EXPECT_EQ(lost.exit_code, 2);
+  EXPECT_NE(lost.err.find("environment 'maps/env1.toml' not found"), std::string::npos) << lost.err;
+  EXPECT_FALSE(fs::exists(tmp.file("run")));
+  const auto w =
+      run_chaosweep("slurm ../specs/s.toml --tasks 3 -o ../run", "cd " + shell_quote(tmp.file("work")) + " &&");
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  for (int k = 0; k < 3; ++k)
+    ASSERT_EQ(run_script(tmp.file("run/sweep.sbatch"), "SLURM_ARRAY_TASK_ID=" + std::to_string(k), tmp.path().string()),
+              0)
+        << read_file(tmp.file("script.log"));
+  ASSERT_EQ(run_script(tmp.file("run/merge.sbatch"), "", tmp.path().string()), 0) << read_file(tmp.file("script.log"));
+  const auto single =
+      run_chaosweep("sweep ../specs/s.toml -q -o ../single.h5", "cd " + shell_quote(tmp.file("work")) + " &&");
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  const auto cmp = run_chaosweep("compare " + tmp.file("run/results.h5") + " " + tmp.file("single.h5"));
+  EXPECT_EQ(cmp.exit_code, 0) << cmp.out << cmp.err;
+  // Where that directory is gone (a node that cannot see it), a spec of
+  // absolute paths still runs.
+  fs::create_directories(tmp.file("gone"));
+  write_file(tmp.file("specs/abs.toml"), "[fixed]\nenv = \"" + tmp.file("work/maps/env1.toml") +
+                                             "\"\nsize = 10\nsr = 2\nmax_time = 5\n[axes]\nA = [0.4, 0.5]\n");
+  ASSERT_EQ(run_chaosweep("slurm ../specs/abs.toml --tasks 1 -o ../run2", "cd " + shell_quote(tmp.file("gone")) + " &&")
+                .exit_code,
+            0);
+  fs::remove_all(tmp.file("gone"));
+  EXPECT_EQ(run_script(tmp.file("run2/sweep.sbatch"), "SLURM_ARRAY_TASK_ID=0", tmp.path().string()), 0)
+      << read_file(tmp.file("script.log"));
+  EXPECT_TRUE(fs::exists(tmp.file("run2/shard_0.h5")));
+}
+
 TEST(CliMerge, SlurmDirMergesTheShardsOfTheDirectoryAndNamesAMissingOne) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), spec_18_runs);

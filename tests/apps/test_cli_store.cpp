@@ -402,6 +402,36 @@ TEST(CliReaders, AFifoADeviceOrADirectoryAsAResultFileIsRefusedWithoutBlocking) 
   const auto st = run_chaosweep("status " + tmp.path().string(), "timeout 30");
   EXPECT_EQ(st.exit_code, 1) << st.err;
   EXPECT_TRUE(has(st.out, "is a FIFO, not a result file")) << st.out;
+  // A FIFO as the directory's cluster.toml (status and merge --slurm-dir blocked on it).
+  fs::remove(tmp.file("cluster.toml"));
+  ASSERT_EQ(mkfifo(tmp.file("cluster.toml").c_str(), 0644), 0);
+  for (const std::string& cmd :
+       {"status " + tmp.path().string(), "merge -o " + tmp.file("m.h5") + " --slurm-dir " + tmp.path().string()}) {
+    const auto r = run_chaosweep(cmd, "timeout 30");
+    EXPECT_EQ(r.exit_code, 2) << cmd;
+    EXPECT_TRUE(has(r.err, "cluster.toml: the sweep's cluster.toml is a FIFO (named pipe), not a regular file"))
+        << cmd << "\n"
+        << r.err;
+  }
+}
+
+// export: a file that is not a result file is bad input (it exited 3).
+TEST(CliExport, AFileThatIsNotAResultFileExits2AndWritesNothing) {
+  TempDir tmp;
+  write_file(tmp.file("junk.h5"), "not a result file");
+  write_hand_made(tmp.file("float.h5"), reader_columns('f'), 5);
+  ASSERT_EQ(mkfifo(tmp.file("fifo.h5").c_str(), 0644), 0);
+  struct Case {
+    std::string file, why;
+  };
+  for (const Case& c : {Case{"junk.h5", "is not an HDF5 file"}, Case{"float.h5", "column 'run_id' is floating-point"},
+                        Case{"fifo.h5", "is a FIFO, not a result file"}}) {
+    const auto r = run_chaosweep("export " + tmp.file(c.file) + " -o " + tmp.file("x.csv"), "timeout 30");
+    EXPECT_EQ(r.exit_code, 2) << c.file << "\n" << r.err;
+    EXPECT_TRUE(has(r.err, c.why)) << r.err;
+    EXPECT_FALSE(fs::exists(tmp.file("x.csv")));
+    EXPECT_FALSE(fs::exists(tmp.file("x.csv.tmp")));
+  }
 }
 
 TEST(CliStatus, ADamagedShardIsNamedAndListedToResubmit) {
@@ -418,6 +448,31 @@ TEST(CliStatus, ADamagedShardIsNamedAndListedToResubmit) {
   EXPECT_TRUE(has(r.out, "damaged  1: 1")) << r.out;
   EXPECT_TRUE(has(r.out, "shard_1.h5 is not an HDF5 file")) << r.out;
   EXPECT_TRUE(has(r.out, "resubmit: --array=1,2")) << r.out;
+}
+
+// A shard file merge would refuse is damaged, not finished: a file of
+// another spec, of another sweep's plan, of another shard (each with the row
+// count status expects). Its rows are not read (merge checks every run_id).
+TEST(CliStatus, AShardThatMergeWouldRefuseIsDamagedNotFinished) {
+  TempDir tmp;
+  write_file(tmp.file("cluster.toml"), "spec = '/x.toml'\nname = 'x'\ntasks = 5\nruns = 50\n");
+  for (int k : {0, 4}) write_shard(tmp.file("shard_" + std::to_string(k) + ".h5"), "h", k, 5, 50);
+  write_shard(tmp.file("shard_1.h5"), "h", 1, 6, 60, 10);  // shard 1/6, 10 rows
+  write_shard(tmp.file("shard_2.h5"), "other", 2, 5, 50);
+  write_shard(tmp.file("shard_3.h5"), "h", 3, 5, 60, 10);
+  const auto r = run_chaosweep("status " + tmp.path().string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(has(r.out, "finished 2: 0,4")) << r.out;
+  EXPECT_TRUE(has(r.out, "damaged  3: 1,2,3")) << r.out;
+  EXPECT_TRUE(has(r.out, "shard_1.h5 is shard 1/6, not 1/5 (of another sweep)")) << r.out;
+  EXPECT_TRUE(has(r.out, "shard_2.h5 was made from another spec or other input files than most shards")) << r.out;
+  EXPECT_TRUE(has(r.out, "shard_3.h5 has runs_total 60, not the sweep's 50")) << r.out;
+  EXPECT_TRUE(has(r.out, "resubmit: --array=1,2,3")) << r.out;
+  // The same directory with the damaged shards redone is finished.
+  for (int k : {1, 2, 3}) write_shard(tmp.file("shard_" + std::to_string(k) + ".h5"), "h", k, 5, 50);
+  const auto fixed = run_chaosweep("status " + tmp.path().string());
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.out;
+  EXPECT_TRUE(has(fixed.out, "finished 5: 0,1,2,3,4")) << fixed.out;
 }
 
 TEST(CliSweep, AResumeUnderAnotherSimdTargetRecordsEveryTargetUsed) {
