@@ -364,6 +364,24 @@ const std::vector<std::string>& table_names() {
 
 bool table_needs_results(const std::string& name) { return table_kind(name).needs_results; }
 
+TableColumns table_columns(const std::string& name, const TableOptions& opt) {
+  TableColumns t;
+  if (name != "summary" && name != "best") return t;
+  t.all = false;
+  t.columns = opt.by;
+  if (name == "summary") {
+    if (opt.by.empty()) t.columns.emplace_back("variant");
+    t.columns.emplace_back("final_coverage");
+  } else if (opt.params.empty()) {
+    t.if_varying.emplace_back("env");  // varying_params' candidates
+    for (const ParamInfo& p : param_table()) t.if_varying.emplace_back(p.name);
+  } else {
+    t.columns.insert(t.columns.end(), opt.params.begin(), opt.params.end());
+  }
+  for (const char* c : {"status", "coverage_time", "pr"}) t.columns.emplace_back(c);
+  return t;
+}
+
 TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt) {
   const TableKind& kind = table_kind(name);
   if (kind.needs_results && rs.rows() == 0) throw AnalysisError("the result files hold no runs");
