@@ -19,6 +19,15 @@ struct Group {
 std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string>& keys,
                               const std::vector<std::size_t>& rows);
 
+// The same grouping without the keys' text (cheap for a group per row):
+// group g is rows[order[k]] for k in [start[g], start[g + 1]), in `rows` order.
+struct RowSpans {
+  std::vector<std::size_t> order, start;
+  std::size_t groups() const { return start.empty() ? 0 : start.size() - 1; }
+  std::vector<std::size_t> rows_of(std::size_t g, const std::vector<std::size_t>& rows) const;
+};
+RowSpans group_spans(const ResultSet& rs, const std::vector<std::string>& keys, const std::vector<std::size_t>& rows);
+
 // Quantile q in [0, 1] of v by linear interpolation between order statistics
 // (Hyndman-Fan type 7, numpy's default); NaN for an empty v.
 double quantile(std::vector<double> v, double q);
