@@ -229,6 +229,8 @@ TypedColumns read_some_columns(const std::string& path, const std::vector<std::s
   }
   while (reader.next()) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (std::find(columns.begin(), columns.begin() + long(c), columns[c]) != columns.begin() + long(c))
+        continue;  // asked for twice: taken once
       const Column::Type t = reader.type(c);
       if (t == Column::Type::text) {
         auto& dst = out.text[columns[c]];
