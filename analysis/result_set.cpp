@@ -46,7 +46,6 @@ void refuse_runs_held_twice(const std::vector<StoredColumns>& files, const std::
   }
 }
 
-
 // A column read only if it varies, while it has not: its first value.
 struct Constant {
   bool any = false;  // a row was seen

@@ -90,7 +90,8 @@ void check_kinds(const std::string& path) {
 // One file read block by block: its columns converted to this engine's kinds.
 class Side {
  public:
-  Side(const std::string& path, const Compared& compared, std::size_t block_rows) : reader_(path, names(compared), block_rows) {
+  Side(const std::string& path, const Compared& compared, std::size_t block_rows)
+      : reader_(path, names(compared), block_rows) {
     block_.resize_like(compared);
     nf_ = compared.f64.size();
     ni_ = compared.i64.size();
@@ -437,7 +438,9 @@ CompareReport compare_results(const std::string& a_path, const std::string& b_pa
   for (const std::string& n : names_a) {  // in name order
     const Column* c = find_column(n);
     if (!c || !c->deterministic || !names_b.count(n) || n == "run_id" || n == "param_hash") continue;
-    (c->type == Column::Type::f64 ? compared.f64 : c->type == Column::Type::i64 ? compared.i64 : compared.text)
+    (c->type == Column::Type::f64   ? compared.f64
+     : c->type == Column::Type::i64 ? compared.i64
+                                    : compared.text)
         .push_back(n);
   }
   const Inputs in{a_path, b_path, compared, opt};

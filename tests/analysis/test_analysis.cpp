@@ -215,10 +215,8 @@ TEST(Tables, SummaryAndBestOfTheColumnsTheyNeedAreThoseOfEveryColumn) {
        {std::vector<std::string>{dir.file("a.h5")}, std::vector<std::string>{dir.file("a.h5"), dir.file("b.h5")}}) {
     const ResultSet all = ResultSet::load(files);
     for (const std::string& name : {"summary", "best"}) {
-      for (const auto& [by, params] : {std::pair<std::string, std::string>{"", ""},
-                                       {"label", ""},
-                                       {"label", "ds_index,c,f"},
-                                       {"env,sr", ""}}) {
+      for (const auto& [by, params] :
+           {std::pair<std::string, std::string>{"", ""}, {"label", ""}, {"label", "ds_index,c,f"}, {"env,sr", ""}}) {
         TableOptions opt;
         opt.by = split_list(by);
         opt.params = split_list(params);

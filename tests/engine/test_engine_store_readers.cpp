@@ -141,7 +141,7 @@ TEST(StoreReaders, StreamingAndPassesGiveTheSameReport) {
     EXPECT_EQ(s.aligned, 2587);
     EXPECT_EQ(s.missing, 3);
     EXPECT_EQ(s.extra, 10);
-    EXPECT_EQ(s.changed, 236);  // run_ids % 11 == 3 among the aligned
+    EXPECT_EQ(s.changed, 236);                                       // run_ids % 11 == 3 among the aligned
     EXPECT_EQ(int(s.details.size()), std::min(show, 236 + 3 + 10));  // a note per changed row
     if (show >= 300) {
       EXPECT_EQ(s.details.back().rfind("run_id ", 0), 0u);
