@@ -235,10 +235,15 @@ ResultSet ResultSet::load_some(const std::vector<std::string>& paths, const std:
   for (std::size_t i = 0; i < files.size(); ++i) {
     StoredColumns& f = files[i];
     for (auto& [name, v] : f.numeric)
-      if (auto it = rs.num_.find(name); it != rs.num_.end()) it->second.insert(it->second.end(), v.begin(), v.end());
+      if (auto it = rs.num_.find(name); it != rs.num_.end()) {
+        if (it->second.empty()) it->second = std::move(v);  // the first file's: no copy
+        else it->second.insert(it->second.end(), v.begin(), v.end());
+      }
     for (auto& [name, v] : f.text)
-      if (auto it = rs.text_.find(name); it != rs.text_.end())
-        it->second.insert(it->second.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+      if (auto it = rs.text_.find(name); it != rs.text_.end()) {
+        if (it->second.empty()) it->second = std::move(v);
+        else it->second.insert(it->second.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+      }
     rs.rows_ += f.rows;
     rs.sources_.push_back(paths[i]);
   }

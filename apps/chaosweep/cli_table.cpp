@@ -65,8 +65,8 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
           // Only the columns the table reads, and those --where tests.
           TableColumns cols = table_columns(o->name, o->table);
           for (const std::string& w : o->where) cols.columns.push_back(w.substr(0, w.find('=')));
-          rs = (cols.all ? ResultSet::load(o->files) : ResultSet::load(o->files, cols.columns, cols.if_varying))
-                   .where(o->where);
+          rs = cols.all ? ResultSet::load(o->files) : ResultSet::load(o->files, cols.columns, cols.if_varying);
+          if (!o->where.empty()) rs = rs.where(o->where);  // (a copy of the rows kept)
         }
         const TextTable t = make_table(o->name, rs, o->table);
         if (o->out.empty()) {

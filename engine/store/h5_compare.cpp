@@ -56,6 +56,13 @@ struct Rows {
     i64.resize(c.i64.size());
     text.resize(c.text.size());
   }
+  void reserve(std::size_t n) {  // rows held for a pass: no doubling of every column
+    run_id.reserve(n);
+    param_hash.reserve(n);
+    for (auto& v : f64) v.reserve(n);
+    for (auto& v : i64) v.reserve(n);
+    for (auto& v : text) v.reserve(n);
+  }
   void clear() {
     for (auto* v : {&run_id, &param_hash}) v->clear();
     for (auto& v : f64) v.clear();
@@ -338,6 +345,8 @@ void align_in_passes(const Inputs& in, CompareReport& rep, Notes& notes, Groups&
     ++rep.passes;
     Rows held;  // B's rows of this part, in file order
     held.resize_like(in.compared);
+    const std::size_t rows_b = std::size_t(count_rows(in.b));
+    held.reserve(rows_b / parts + rows_b / parts / 8 + 1024);  // a part's share, with room for an uneven spread
     std::vector<std::size_t> held_row;  // their rows in B
     Side b(in.b, in.compared, in.opt.block_rows);
     while (b.next()) {

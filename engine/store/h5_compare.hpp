@@ -16,7 +16,7 @@ struct CompareOptions {
   // reader's default), and rows of B held at once when the files are not
   // both in run_id order (they are then aligned in passes over a part of
   // the keys each); `force_passes` (tests) aligns in passes even so.
-  std::size_t block_rows = 0, part_rows = std::size_t(1) << 18;
+  std::size_t block_rows = 0, part_rows = std::size_t(1) << 19;
   bool force_passes = false;
 };
 
