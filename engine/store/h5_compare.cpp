@@ -347,7 +347,7 @@ void align_in_passes(const Inputs& in, CompareReport& rep, Notes& notes, Groups&
     held.resize_like(in.compared);
     const std::size_t rows_b = std::size_t(count_rows(in.b));
     held.reserve(rows_b / parts + rows_b / parts / 8 + 1024);  // a part's share, with room for an uneven spread
-    std::vector<std::size_t> held_row;  // their rows in B
+    std::vector<std::size_t> held_row;                         // their rows in B
     Side b(in.b, in.compared, in.opt.block_rows);
     while (b.next()) {
       const Rows& blk = b.block();
