@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -152,6 +153,27 @@ TEST(StoreReaders, StreamingAndPassesGiveTheSameReport) {
   EXPECT_TRUE(same.same());
   EXPECT_EQ(same.identical, 2590);
   ASSERT_EQ(same.groups.size(), 2u);  // empty and maps/a.txt
+}
+
+TEST(StoreReaders, AnEmptyFileStreamsAndAlignsInPasses) {
+  test::TempDir tmp;
+  const std::string empty = write(tmp, "empty.h5", {}), some = write(tmp, "some.h5", rows_of(1500));
+  ColumnBlockReader reader(empty, {"run_id", "message"});
+  EXPECT_EQ(reader.rows(), 0u);
+  EXPECT_FALSE(reader.next());
+  for (const bool passes : {false, true}) {
+    CompareOptions opt;
+    opt.force_passes = passes;
+    opt.part_rows = 500;
+    const CompareReport none = compare_results(empty, empty, opt);
+    EXPECT_TRUE(none.same());
+    EXPECT_TRUE(none.groups.empty());
+    const CompareReport r = compare_results(some, empty, opt), back = compare_results(empty, some, opt);
+    EXPECT_EQ(r.missing, 1500);
+    EXPECT_EQ(back.extra, 1500);
+    EXPECT_EQ(r.groups.size(), 2u);
+    EXPECT_TRUE(std::isnan(r.groups[0].median_b));
+  }
 }
 
 TEST(StoreReaders, FilesOutOfRunIdOrderAreAlignedInPassesWithTheSameCounts) {
