@@ -2,48 +2,101 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <map>
+#include <string_view>
+#include <unordered_map>
 
 namespace chaosweep {
 
-std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string>& keys,
-                              const std::vector<std::size_t>& rows) {
-  for (const std::string& k : keys)
-    if (!rs.has(k)) (void)rs.num(k);  // throws, naming the column
-  // Ordering key: per column, a number or a string (in natural order).
-  using Part = std::pair<double, std::string>;
-  auto less = [](const std::vector<Part>& a, const std::vector<Part>& b) {
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (a[i].first != b[i].first) return a[i].first < b[i].first;
-      if (natural_less(a[i].second, b[i].second)) return true;
-      if (natural_less(b[i].second, a[i].second)) return false;
+namespace {
+
+// Per row of `rows`, the rank of its value of `key` among the values it
+// takes (numbers by value, text in natural order; NaN after every number).
+std::vector<std::uint32_t> ranks(const ResultSet& rs, const std::string& key, const std::vector<std::size_t>& rows,
+                                 std::uint32_t& distinct) {
+  std::vector<std::uint32_t> out(rows.size());
+  if (rs.is_numeric(key)) {
+    const auto& col = rs.num(key);
+    std::vector<double> values;
+    values.reserve(rows.size());
+    bool nan = false;
+    for (std::size_t r : rows) {
+      if (std::isnan(col[r])) nan = true;
+      else values.push_back(col[r]);
     }
-    return false;
-  };
-  std::map<std::vector<Part>, Group, decltype(less)> by(less);
-  for (std::size_t r : rows) {
-    std::vector<Part> order;
-    for (const std::string& k : keys) {
-      if (rs.is_numeric(k)) order.emplace_back(rs.num(k)[r], "");
-      else order.emplace_back(0.0, rs.text(k)[r]);
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());  // -0 and 0 are one value
+    distinct = std::uint32_t(values.size() + nan);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const double v = col[rows[k]];
+      out[k] = std::isnan(v) ? std::uint32_t(values.size())
+                             : std::uint32_t(std::lower_bound(values.begin(), values.end(), v) - values.begin());
     }
-    auto [it, fresh] = by.try_emplace(std::move(order));
-    Group& g = it->second;
-    if (fresh) {
-      for (const std::string& k : keys) {
-        g.key.push_back(rs.cell(k, r));
-        g.key_num.push_back(rs.is_numeric(k) ? rs.num(k)[r] : std::numeric_limits<double>::quiet_NaN());
-      }
-    }
-    g.rows.push_back(r);
+    return out;
   }
-  std::vector<Group> out;
-  for (auto& [k, g] : by) out.push_back(std::move(g));
+  const auto& col = rs.text(key);
+  std::unordered_map<std::string_view, std::uint32_t> code;
+  for (std::size_t r : rows) code.try_emplace(col[r], 0);
+  std::vector<std::string_view> values;
+  for (const auto& [v, c] : code) values.push_back(v);
+  std::sort(values.begin(), values.end(), natural_less);  // "a2" before "a12"
+  for (std::size_t k = 0; k < values.size(); ++k) code[values[k]] = std::uint32_t(k);
+  distinct = std::uint32_t(values.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) out[k] = code[col[rows[k]]];
   return out;
 }
 
-bool natural_less(const std::string& a, const std::string& b) {
+}  // namespace
+
+std::vector<std::size_t> RowSpans::rows_of(std::size_t g, const std::vector<std::size_t>& rows) const {
+  std::vector<std::size_t> out;
+  for (std::size_t k = start[g]; k < start[g + 1]; ++k) out.push_back(rows[order[k]]);
+  return out;
+}
+
+RowSpans group_spans(const ResultSet& rs, const std::vector<std::string>& keys, const std::vector<std::size_t>& rows) {
+  for (const std::string& k : keys)
+    if (!rs.has(k)) (void)rs.num(k);  // throws, naming the column
+  // Sorted by the keys' ranks, rows of one key in their order (stable).
+  std::vector<std::vector<std::uint32_t>> rank;
+  for (const std::string& k : keys) {
+    std::uint32_t distinct = 0;
+    rank.push_back(ranks(rs, k, rows, distinct));
+  }
+  RowSpans s;
+  s.order.resize(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) s.order[k] = k;
+  auto less = [&](std::size_t x, std::size_t y) {
+    for (const auto& r : rank)
+      if (r[x] != r[y]) return r[x] < r[y];
+    return false;
+  };
+  std::stable_sort(s.order.begin(), s.order.end(), less);
+  for (std::size_t k = 0; k < s.order.size(); ++k)
+    if (k == 0 || less(s.order[k - 1], s.order[k])) s.start.push_back(k);
+  s.start.push_back(s.order.size());
+  if (rows.empty()) s.start = {0};
+  return s;
+}
+
+std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string>& keys,
+                              const std::vector<std::size_t>& rows) {
+  const RowSpans s = group_spans(rs, keys, rows);
+  std::vector<Group> out(s.groups());
+  for (std::size_t g = 0; g < s.groups(); ++g) {
+    Group& grp = out[g];
+    grp.rows = s.rows_of(g, rows);
+    const std::size_t r = grp.rows[0];  // the key as its first row has it
+    for (const std::string& k : keys) {
+      grp.key.push_back(rs.cell(k, r));
+      grp.key_num.push_back(rs.is_numeric(k) ? rs.num(k)[r] : std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  return out;
+}
+
+bool natural_less(std::string_view a, std::string_view b) {
   auto digit = [](char c) { return c >= '0' && c <= '9'; };
   std::size_t i = 0, j = 0;
   while (i < a.size() && j < b.size()) {

@@ -2,6 +2,7 @@
 // Rows grouped by the values of key columns, and the statistics the tables
 // and figures report per group.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/result_set.hpp"
@@ -21,7 +22,16 @@ std::vector<Group> group_rows(const ResultSet& rs, const std::vector<std::string
                               const std::vector<std::size_t>& rows);
 
 // Text order with runs of digits compared as numbers ("a2" < "a12").
-bool natural_less(const std::string& a, const std::string& b);
+bool natural_less(std::string_view a, std::string_view b);
+
+// The same grouping without the keys' text (cheap for a group per row):
+// group g is rows[order[k]] for k in [start[g], start[g + 1]), in `rows` order.
+struct RowSpans {
+  std::vector<std::size_t> order, start;
+  std::size_t groups() const { return start.empty() ? 0 : start.size() - 1; }
+  std::vector<std::size_t> rows_of(std::size_t g, const std::vector<std::size_t>& rows) const;
+};
+RowSpans group_spans(const ResultSet& rs, const std::vector<std::string>& keys, const std::vector<std::size_t>& rows);
 
 // Quantile q in [0, 1] of v by linear interpolation between order statistics
 // (Hyndman-Fan type 7, numpy's default); NaN for an empty v.

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <tuple>
 
+#include "engine/store/column_blocks.hpp"
 #include "engine/store/h5_store.hpp"
 #include "kernels/core/param_table.hpp"
 
@@ -44,13 +46,89 @@ void refuse_runs_held_twice(const std::vector<StoredColumns>& files, const std::
   }
 }
 
+// A column read only if it varies, while it has not: its first value.
+struct Constant {
+  bool any = false;  // a row was seen
+  double number = 0;
+  std::string text;
+  bool same_as(const Constant& o) const {
+    return !any || !o.any || (std::memcmp(&number, &o.number, sizeof number) == 0 && text == o.text);
+  }
+};
+
+// `path`'s columns `want` (file order) as read_all_columns gives them; each
+// marked varying_only is kept only once it takes a second value (its rows
+// before then filled in), else left out with its value in `constants`.
+StoredColumns read_columns(const std::string& path, const std::vector<std::pair<std::string, Column::Type>>& want,
+                           const std::vector<bool>& varying_only, std::map<std::string, Constant>& constants) {
+  std::vector<std::string> names;
+  for (const auto& [name, type] : want) names.push_back(name);
+  ColumnBlockReader reader(path, names);
+  const std::size_t n = want.size();
+  std::vector<std::vector<double>> nums(n);
+  std::vector<std::vector<std::string>> texts(n);
+  std::vector<bool> keep(n);
+  std::vector<Constant> first(n);
+  for (std::size_t c = 0; c < n; ++c) keep[c] = !varying_only[c];
+  std::size_t done = 0;  // rows before this block
+  while (reader.next()) {
+    for (std::size_t c = 0; c < n; ++c) {
+      const bool text = want[c].second == Column::Type::text;
+      const std::size_t size = reader.size();
+      std::size_t from = 0;  // rows of the block to take
+      if (!keep[c]) {
+        Constant& k = first[c];
+        if (!k.any && size > 0) {
+          k.any = true;
+          if (text) k.text = reader.text(c)[0];
+          else k.number = reader.number(c)[0];
+        }
+        while (from < size && (text ? reader.text(c)[from] == k.text
+                                    : std::memcmp(&reader.number(c)[from], &k.number, sizeof(double)) == 0))
+          ++from;
+        if (from == size) continue;  // constant so far
+        keep[c] = true;              // varies: its rows so far all held the first value
+        if (text) texts[c].assign(done + from, k.text);
+        else nums[c].assign(done + from, k.number);
+      }
+      if (text) texts[c].insert(texts[c].end(), reader.text(c).begin() + long(from), reader.text(c).end());
+      else nums[c].insert(nums[c].end(), reader.number(c).begin() + long(from), reader.number(c).end());
+    }
+    done += reader.size();
+  }
+  StoredColumns out;
+  out.rows = reader.rows();
+  for (std::size_t c = 0; c < n; ++c) {
+    if (!keep[c]) {
+      constants[want[c].first] = first[c];
+      continue;
+    }
+    if (want[c].second == Column::Type::text) out.text.emplace_back(want[c].first, std::move(texts[c]));
+    else out.numeric.emplace_back(want[c].first, std::move(nums[c]));
+  }
+  return out;
+}
+
 }  // namespace
 
-ResultSet ResultSet::load(const std::vector<std::string>& paths) {
+ResultSet ResultSet::load(const std::vector<std::string>& paths) { return load_some(paths, nullptr, {}); }
+
+ResultSet ResultSet::load(const std::vector<std::string>& paths, const std::vector<std::string>& columns,
+                          const std::vector<std::string>& if_varying) {
+  return load_some(paths, &columns, if_varying);
+}
+
+ResultSet ResultSet::load_some(const std::vector<std::string>& paths, const std::vector<std::string>* columns,
+                               const std::vector<std::string>& if_varying) {
   if (paths.empty()) throw AnalysisError("no result file given");
   ResultSet rs;
   std::vector<StoredColumns> files;
   std::vector<std::string> spec_hashes;
+  std::vector<std::map<std::string, Constant>> constants(paths.size());
+  std::vector<std::vector<std::pair<std::string, Column::Type>>> kinds;  // every file's columns
+  auto listed = [](const std::vector<std::string>& v, const std::string& n) {
+    return std::find(v.begin(), v.end(), n) != v.end();
+  };
   for (std::size_t i = 0; i < paths.size(); ++i) {
     const std::string& path = paths[i];
     for (std::size_t j = 0; j < i; ++j) {
@@ -59,8 +137,22 @@ ResultSet ResultSet::load(const std::vector<std::string>& paths) {
         throw AnalysisError(path + " is given twice (also as " + paths[j] + "): its runs would be counted twice");
     }
     try {
-      files.push_back(read_all_columns(path));
-      for (const auto& [name, type] : column_types(path))
+      kinds.push_back(column_types(path));
+      if (!columns) {
+        files.push_back(read_all_columns(path));
+      } else {
+        std::vector<std::pair<std::string, Column::Type>> want;
+        std::vector<bool> varying_only;
+        for (const auto& [name, type] : kinds.back()) {
+          const bool needed = name == "run_id" || name == "status" || listed(*columns, name);
+          if (needed || listed(if_varying, name)) {
+            want.emplace_back(name, type);
+            varying_only.push_back(!needed);
+          }
+        }
+        files.push_back(read_columns(path, want, varying_only, constants[i]));
+      }
+      for (const auto& [name, type] : kinds.back())
         if (name == "run_id" && type != Column::Type::i64)
           throw AnalysisError(path + ": column 'run_id' is " + (type == Column::Type::f64 ? "floating-point" : "text") +
                               ", not integers (not a chaosweep result file)");
@@ -86,6 +178,42 @@ ResultSet ResultSet::load(const std::vector<std::string>& paths) {
                           " column (not a chaosweep result file)");
   }
   refuse_runs_held_twice(files, spec_hashes, paths);
+  // A column left out as constant in a file is needed after all when it
+  // varies in another, or holds another constant there.
+  for (const std::string& name : if_varying) {
+    bool needed = false;
+    const Constant* seen = nullptr;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      const auto k = constants[i].find(name);
+      if (k == constants[i].end()) {
+        const bool has = std::any_of(kinds[i].begin(), kinds[i].end(), [&](const auto& t) { return t.first == name; });
+        needed = needed || has;  // held in full: it varies there
+        continue;
+      }
+      if (seen && !seen->same_as(k->second)) needed = true;
+      if (k->second.any) seen = &k->second;
+    }
+    if (!needed) continue;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      const auto k = constants[i].find(name);
+      if (k == constants[i].end()) continue;
+      const bool text = std::any_of(kinds[i].begin(), kinds[i].end(),
+                                    [&](const auto& t) { return t.first == name && t.second == Column::Type::text; });
+      if (text) files[i].text.emplace_back(name, std::vector<std::string>(files[i].rows, k->second.text));
+      else files[i].numeric.emplace_back(name, std::vector<double>(files[i].rows, k->second.number));
+    }
+  }
+  // The columns every file has, loaded or not (with the first file's kinds).
+  for (const auto& [name, type] : kinds[0]) {
+    const bool text = type == Column::Type::text;
+    bool everywhere = true;
+    for (const auto& k : kinds)
+      everywhere = everywhere && std::any_of(k.begin(), k.end(), [&](const auto& t) {
+                     return t.first == name && (t.second == Column::Type::text) == text;
+                   });
+    if (everywhere) rs.file_columns_.push_back(name);
+  }
+  std::sort(rs.file_columns_.begin(), rs.file_columns_.end());
   // Columns every file has (a merged or older file may carry fewer), with
   // the first file's kinds.
   auto in_all = [&](const std::string& name, bool numeric) {
@@ -107,10 +235,15 @@ ResultSet ResultSet::load(const std::vector<std::string>& paths) {
   for (std::size_t i = 0; i < files.size(); ++i) {
     StoredColumns& f = files[i];
     for (auto& [name, v] : f.numeric)
-      if (auto it = rs.num_.find(name); it != rs.num_.end()) it->second.insert(it->second.end(), v.begin(), v.end());
+      if (auto it = rs.num_.find(name); it != rs.num_.end()) {
+        if (it->second.empty()) it->second = std::move(v);  // the first file's: no copy
+        else it->second.insert(it->second.end(), v.begin(), v.end());
+      }
     for (auto& [name, v] : f.text)
-      if (auto it = rs.text_.find(name); it != rs.text_.end())
-        it->second.insert(it->second.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+      if (auto it = rs.text_.find(name); it != rs.text_.end()) {
+        if (it->second.empty()) it->second = std::move(v);
+        else it->second.insert(it->second.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+      }
     rs.rows_ += f.rows;
     rs.sources_.push_back(paths[i]);
   }
@@ -142,8 +275,8 @@ std::vector<std::string> ResultSet::names() const {
 }
 
 void ResultSet::missing(const std::string& name, const char* kind) const {
-  std::string list;
-  for (const std::string& n : names()) list += (list.empty() ? "" : ", ") + n;
+  std::string list;  // the files' columns, not only those loaded
+  for (const std::string& n : file_columns_.empty() ? names() : file_columns_) list += (list.empty() ? "" : ", ") + n;
   if (has(name)) throw AnalysisError("column '" + name + "' is not " + kind);
   throw AnalysisError("no column '" + name + "' in the results (columns: " + list + ")");
 }
@@ -220,6 +353,7 @@ ResultSet ResultSet::where(const std::vector<std::string>& conditions) const {
   }
   ResultSet out;
   out.sources_ = sources_;
+  out.file_columns_ = file_columns_;
   for (const auto& [k, v] : num_) {
     auto& dst = out.num_[k];
     for (std::size_t r = 0; r < rows_; ++r)

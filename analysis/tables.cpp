@@ -60,16 +60,32 @@ struct RankedTuple {
   double score;
 };
 
+// The tuples of `params` over `rows` by score, all counted (`tuples`) but
+// only the best `keep` returned: a sweep of a tuple per run has as many
+// tuples as rows, and their keys' text is made for those kept only.
 std::vector<RankedTuple> rank_tuples(const ResultSet& rs, const std::vector<std::string>& params,
-                                     const std::vector<std::size_t>& rows) {
-  std::vector<RankedTuple> out;
-  for (Group& g : group_rows(rs, params, rows)) {
-    const double s = tuple_score(rs, g.rows);
-    out.push_back({std::move(g), s});
+                                     const std::vector<std::size_t>& rows, std::size_t keep,
+                                     std::size_t* tuples = nullptr) {
+  const RowSpans spans = group_spans(rs, params, rows);
+  std::vector<double> score(spans.groups());
+  std::vector<std::size_t> by_score(spans.groups());
+  for (std::size_t g = 0; g < spans.groups(); ++g) {
+    score[g] = tuple_score(rs, spans.rows_of(g, rows));
+    by_score[g] = g;
   }
+  if (tuples) *tuples = spans.groups();
   // Stable: equal scores keep the tuples' key order.
-  std::stable_sort(out.begin(), out.end(),
-                   [](const RankedTuple& a, const RankedTuple& b) { return a.score < b.score; });
+  std::stable_sort(by_score.begin(), by_score.end(), [&](std::size_t a, std::size_t b) { return score[a] < score[b]; });
+  std::vector<RankedTuple> out;
+  for (std::size_t k = 0; k < by_score.size() && k < keep; ++k) {
+    Group t;
+    t.rows = spans.rows_of(by_score[k], rows);
+    for (const std::string& p : params) {
+      t.key.push_back(rs.cell(p, t.rows[0]));
+      t.key_num.push_back(rs.is_numeric(p) ? rs.num(p)[t.rows[0]] : nan);
+    }
+    out.push_back({std::move(t), score[by_score[k]]});
+  }
   return out;
 }
 
@@ -87,7 +103,7 @@ TextTable best_table(const ResultSet& rs, const TableOptions& opt) {
   t.header.insert(t.header.end(), params.begin(), params.end());
   for (const char* h : {"median CT", "min CT", "ok", "median PR"}) t.header.emplace_back(h);
   for (const Group& g : groups) {
-    const auto ranked = rank_tuples(rs, params, g.rows);
+    const auto ranked = rank_tuples(rs, params, g.rows, std::size_t(opt.top));
     for (std::size_t k = 0; k < ranked.size() && int(k) < opt.top; ++k) {
       const RankedTuple& rt = ranked[k];
       std::vector<Cell> row(g.key.begin(), g.key.end());
@@ -223,9 +239,10 @@ std::vector<Table1Case> table1_cases(const ResultSet& rs, bool labelled) {
   std::vector<Table1Case> cases;
   const std::vector<std::string> tuple_keys{"c", "ds_index", "f"};
   for (Group& g : group_rows(rs, case_keys, all_rows(rs))) {
-    auto ranked = rank_tuples(rs, tuple_keys, g.rows);
+    std::size_t tuples = 0;
+    auto ranked = rank_tuples(rs, tuple_keys, g.rows, 1, &tuples);
     const std::string tech = technique(rs, g.rows);
-    cases.push_back({std::move(g), tech, std::move(ranked.front()), ranked.size()});
+    cases.push_back({std::move(g), tech, std::move(ranked.front()), tuples});
   }
   // Table 1's row order: by row number when the labels are numbers.
   std::stable_sort(cases.begin(), cases.end(), [](const Table1Case& a, const Table1Case& b) {
@@ -363,6 +380,24 @@ const std::vector<std::string>& table_names() {
 }
 
 bool table_needs_results(const std::string& name) { return table_kind(name).needs_results; }
+
+TableColumns table_columns(const std::string& name, const TableOptions& opt) {
+  TableColumns t;
+  if (name != "summary" && name != "best") return t;
+  t.all = false;
+  t.columns = opt.by;
+  if (name == "summary") {
+    if (opt.by.empty()) t.columns.emplace_back("variant");
+    t.columns.emplace_back("final_coverage");
+  } else if (opt.params.empty()) {
+    t.if_varying.emplace_back("env");  // varying_params' candidates
+    for (const ParamInfo& p : param_table()) t.if_varying.emplace_back(p.name);
+  } else {
+    t.columns.insert(t.columns.end(), opt.params.begin(), opt.params.end());
+  }
+  for (const char* c : {"status", "coverage_time", "pr"}) t.columns.emplace_back(c);
+  return t;
+}
 
 TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt) {
   const TableKind& kind = table_kind(name);

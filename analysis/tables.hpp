@@ -24,6 +24,13 @@ struct TableOptions {
 // summary: per group, runs, ok rate and CT quantiles.
 TextTable make_table(const std::string& name, const ResultSet& rs, const TableOptions& opt);
 const std::vector<std::string>& table_names();
+// The columns table `name` reads with `opt` (ResultSet::load's `columns`
+// and `if_varying`); all: it reads every column.
+struct TableColumns {
+  bool all = true;
+  std::vector<std::string> columns, if_varying;
+};
+TableColumns table_columns(const std::string& name, const TableOptions& opt);
 // seed001: the Chebyshev map's own numbers (Lyapunov exponents, v(xy)) beside
 // seed 001's; computed, so it reads no result file.
 bool table_needs_results(const std::string& name);

@@ -12,6 +12,7 @@
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
 #include "engine/rows/json_writer.hpp"
+#include "engine/store/column_blocks.hpp"
 #include "engine/store/h5_store.hpp"
 #include "kernels/core/param_table.hpp"
 
@@ -35,47 +36,56 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-// One column of the file, its values found once rather than per row.
+// One column of the file: its key, and where its values are in a block.
 struct ExportColumn {
   std::string key;  // the column's name as written before each value (JSON) or in the header (CSV)
-  const std::vector<std::int64_t>* i64 = nullptr;
-  const std::vector<double>* f64 = nullptr;
-  const std::vector<std::string>* text = nullptr;
+  Column::Type type;
 };
 
-std::string value_text(const ExportColumn& c, std::size_t r, bool csv) {
-  if (c.i64) return std::to_string((*c.i64)[r]);
-  if (c.f64) {
-    const double x = (*c.f64)[r];
+std::string value_text(const ColumnBlockReader& block, std::size_t c, Column::Type type, std::size_t r, bool csv) {
+  if (type == Column::Type::i64) return std::to_string(block.i64(c)[r]);
+  if (type == Column::Type::f64) {
+    const double x = block.f64(c)[r];
     if (std::isfinite(x)) return format_number(x);
     if (std::isnan(x)) return csv ? "" : "null";
     const std::string inf = x > 0 ? "inf" : "-inf";
     return csv ? inf : "\"" + inf + "\"";  // JSON has no infinity
   }
-  return csv ? csv_field((*c.text)[r]) : "\"" + json_escape((*c.text)[r]) + "\"";
+  const std::string& t = block.text(c)[r];
+  return csv ? csv_field(t) : "\"" + json_escape(t) + "\"";
 }
 
+// Block by block (docs/store.md, "Readers"): memory bounded by a block, not
+// the file's rows.
 void write_rows(std::ostream& os, const std::string& file, bool csv) {
-  const TypedColumns cols = read_typed_columns(file);
+  std::vector<std::string> names;
   std::vector<ExportColumn> columns;
   for (const auto& [name, type] : column_types(file)) {
-    ExportColumn c{csv ? csv_field(name) : "\"" + json_escape(name) + "\": "};
-    if (const auto i = cols.i64.find(name); i != cols.i64.end()) c.i64 = &i->second;
-    else if (const auto f = cols.f64.find(name); f != cols.f64.end()) c.f64 = &f->second;
-    else c.text = &cols.text.at(name);
-    columns.push_back(std::move(c));
+    names.push_back(name);
+    columns.push_back({csv ? csv_field(name) : "\"" + json_escape(name) + "\": ", type});
   }
+  ColumnBlockReader block(file, names);
   if (csv) {
     for (std::size_t c = 0; c < columns.size(); ++c) os << (c ? "," : "") << columns[c].key;
     os << "\n";
   }
-  for (std::size_t r = 0; r < cols.rows; ++r) {
-    if (!csv) os << "{";
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (csv) os << (c ? "," : "") << value_text(columns[c], r, true);
-      else os << (c ? ", " : "") << columns[c].key << value_text(columns[c], r, false);
+  std::string line;
+  while (block.next()) {
+    for (std::size_t r = 0; r < block.size(); ++r) {
+      line.clear();
+      if (!csv) line += "{";
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        if (csv) {
+          if (c) line += ",";
+        } else {
+          if (c) line += ", ";
+          line += columns[c].key;
+        }
+        line += value_text(block, c, columns[c].type, r, csv);
+      }
+      line += csv ? "\n" : "}\n";
+      os << line;
     }
-    os << (csv ? "\n" : "}\n");
   }
 }
 

@@ -60,8 +60,15 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
         o->table.params = split_list(o->params);
         const bool needs = table_needs_results(o->name);
         if (needs && o->files.empty()) throw AnalysisError("give one or more result files (.h5)");
-        const TextTable t =
-            make_table(o->name, needs ? ResultSet::load(o->files).where(o->where) : ResultSet{}, o->table);
+        ResultSet rs;
+        if (needs) {
+          // Only the columns the table reads, and those --where tests.
+          TableColumns cols = table_columns(o->name, o->table);
+          for (const std::string& w : o->where) cols.columns.push_back(w.substr(0, w.find('=')));
+          rs = cols.all ? ResultSet::load(o->files) : ResultSet::load(o->files, cols.columns, cols.if_varying);
+          if (!o->where.empty()) rs = rs.where(o->where);  // (a copy of the rows kept)
+        }
+        const TextTable t = make_table(o->name, rs, o->table);
         if (o->out.empty()) {
           t.write(std::cout, f);
           return exit_ok;

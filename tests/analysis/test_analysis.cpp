@@ -199,6 +199,57 @@ TEST_F(Table1Results, BestRanksTuplesPerGroupAndKeepsTopK) {
   expect_golden("best_by_label.md", table_text("best", rs, opt, TableFormat::md));
 }
 
+// summary and best read only the columns they need (table_columns); their
+// tables are those of every column loaded, and a missing column is named
+// with the files' columns, loaded or not.
+TEST(Tables, SummaryAndBestOfTheColumnsTheyNeedAreThoseOfEveryColumn) {
+  TempDir dir;
+  auto other = table1_rows();  // another file: sr (constant in each file) differs between them
+  for (RunRow& r : other) {
+    r.tuple.run_id += 1000;
+    r.tuple.params.sr = 4;
+  }
+  write_results(dir.file("a.h5"), table1_rows());
+  write_results(dir.file("b.h5"), other);
+  for (const std::vector<std::string>& files :
+       {std::vector<std::string>{dir.file("a.h5")}, std::vector<std::string>{dir.file("a.h5"), dir.file("b.h5")}}) {
+    const ResultSet all = ResultSet::load(files);
+    for (const std::string& name : {"summary", "best"}) {
+      for (const auto& [by, params] :
+           {std::pair<std::string, std::string>{"", ""}, {"label", ""}, {"label", "ds_index,c,f"}, {"env,sr", ""}}) {
+        TableOptions opt;
+        opt.by = split_list(by);
+        opt.params = split_list(params);
+        opt.top = 3;
+        const TableColumns cols = table_columns(name, opt);
+        ASSERT_FALSE(cols.all);
+        const ResultSet some = ResultSet::load(files, cols.columns, cols.if_varying);
+        EXPECT_LT(some.names().size(), all.names().size());
+        EXPECT_EQ(some.file_columns(), all.names());
+        EXPECT_EQ(table_text(name, some, opt, TableFormat::csv), table_text(name, all, opt, TableFormat::csv))
+            << name << " by " << by << " params " << params << " of " << files.size();
+      }
+    }
+    const ResultSet best = ResultSet::load(files, {}, {"sr", "f", "seed"});  // sr varies only across the files
+    EXPECT_EQ(best.has("sr"), files.size() == 2);
+    EXPECT_TRUE(best.has("f"));
+    if (best.has("sr")) EXPECT_EQ(best.num("sr"), all.num("sr"));
+    EXPECT_EQ(best.num("f"), all.num("f"));
+  }
+  TableOptions opt;
+  opt.by = {"colour"};
+  const TableColumns cols = table_columns("summary", opt);
+  try {
+    make_table("summary", ResultSet::load({dir.file("a.h5")}, cols.columns, cols.if_varying), opt);
+    FAIL() << "no error";
+  } catch (const AnalysisError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no column 'colour'"), std::string::npos) << what;
+    EXPECT_NE(what.find("wall_time"), std::string::npos) << "a column not loaded is listed: " << what;
+  }
+  EXPECT_TRUE(table_columns("table1", opt).all);
+}
+
 TEST(Tables, BadNamesAndColumnsAreNamedInTheError) {
   TempDir dir;
   write_results(dir.file("r.h5"), fig6_rows());

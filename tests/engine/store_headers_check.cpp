@@ -2,6 +2,7 @@
 // test_engine): the store's public headers keep HDF5 and the spec parser to
 // themselves. Were <hdf5.h> or engine/spec/sweep_spec.hpp reached from
 // them, this file would not compile.
+#include "engine/store/column_blocks.hpp"
 #include "engine/store/disk_room.hpp"
 #include "engine/store/h5_compare.hpp"
 #include "engine/store/h5_merge.hpp"
