@@ -287,7 +287,12 @@ TEST(CliSweep, ResumeIsRefusedWhenAnEnvironmentFileChangedNamingIt) {
 
 TEST(CliSweep, SecondSweepOnTheSameOutputIsRefused) {
   TempDir tmp;
-  write_file(tmp.file("s.toml"), long_sweep);
+  // Four times long_sweep: the first sweep must outlast both refused
+  // attempts (each waits out OutputLock's retries), and long_sweep alone
+  // ended before the second on an idle machine.
+  const std::string spec = cheap_sweep(24, 2000);
+  constexpr std::int64_t spec_runs = 48000;
+  write_file(tmp.file("s.toml"), spec);
   const std::string args = tmp.file("s.toml") + " --threads 1 --batch 1000 -q -o " + tmp.file("r.h5");
   const int pid = chaosweep::test::start_chaosweep("sweep " + args);
   ASSERT_TRUE(wait_for_rows(tmp.file("r.h5.partial"), 1000, pid));
@@ -297,7 +302,7 @@ TEST(CliSweep, SecondSweepOnTheSameOutputIsRefused) {
     EXPECT_NE(second.err.find("is being written by process " + std::to_string(pid)), std::string::npos) << second.err;
   }
   EXPECT_EQ(chaosweep::test::wait_exit(pid), 0);  // the first sweep never noticed
-  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), long_sweep_runs);
+  EXPECT_EQ(chaosweep::count_rows(tmp.file("r.h5")), spec_runs);
   EXPECT_FALSE(std::filesystem::exists(tmp.file("r.h5.lock")));  // removed by its holder
   const auto whole = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("whole.h5"));
   ASSERT_EQ(whole.exit_code, 0) << whole.err;

@@ -58,8 +58,13 @@ struct Cluster {
       out[std::size_t(j)].tuple.run_id = k + 6 * j;
       out[std::size_t(j)].tuple.params = chaosweep::test::small_run(10);
     }
+    // The attributes merge (and so status) checks of a finished shard.
     chaosweep::H5RunWriter w(path, chaosweep::H5RunWriter::Mode::create,
-                             {{"spec_hash", std::string("h")}, {"shard", std::to_string(k) + "/6"}});
+                             {{"spec_hash", std::string("h")},
+                              {"inputs_hash", std::string("h")},
+                              {"input_files", std::string()},
+                              {"shard", std::to_string(k) + "/6"},
+                              {"runs_total", std::int64_t(60)}});
     w.append(out);
     w.finish();
   }
