@@ -184,6 +184,7 @@ grep -Eq "^running  [12]: 0(,2)?$" <<<"$status" || fail "status does not keep ta
 grep -Eq "^(running  2: 0,2|pending  1: 2)$" <<<"$status" || fail "status does not keep task 2 live"
 grep -Eq "^  shard 1: .*job ${slow_job}_1 [A-Z_]+ \(exit [0-9]+:[0-9]+\), no lock$" <<<"$status" ||
   fail "status does not name the killed task's state and exit code"
+grep -q "^failed   1: 1$" <<<"$status" || fail "status does not list the killed task as failed"
 grep -q -- "--array=1$" <<<"$status" || fail "status does not print --array=1 for the killed task"
 
 scancel "$slow_job" || fail "scancel"

@@ -27,8 +27,8 @@ namespace {
 
 // The shards of a plan by state, with a line per shard worth a word.
 struct ShardCensus {
-  std::vector<int> finished, running, pending, partial, missing, damaged;
-  std::string running_detail, pending_detail, detail, missing_detail, broken;
+  std::vector<int> finished, running, pending, failed, partial, missing, damaged;
+  std::string running_detail, pending_detail, failed_detail, detail, missing_detail, broken;
   std::map<int, std::string> identity;  // of each readable shard file: its spec_hash and inputs_hash
 };
 
@@ -125,6 +125,12 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
     if (!pending || has_part)
       (pending ? c.pending_detail : c.running_detail) +=
           name + (rows.empty() ? "" : rows + ", ") + live_words(w, k) + "\n";
+  } else if (w.task && w.task->state != "COMPLETED") {
+    // SLURM says its task ended otherwise than completed (FAILED, TIMEOUT,
+    // CANCELLED, OUT_OF_MEMORY, ...): failed, with the rows it left.
+    c.failed.push_back(k);
+    if (has_part) c.identity[k] = identity_of(part);
+    c.failed_detail += name + (rows.empty() ? "no rows" : rows) + "; " + dead_reason(w, k) + "\n";
   } else if (has_part) {
     c.partial.push_back(k);
     c.identity[k] = identity_of(part);
@@ -147,7 +153,7 @@ void check_same_sweep(ShardCensus& c, const std::string& dir) {
                     })->first;
   for (const auto& [k, id] : c.identity) {
     if (id == most) continue;
-    for (auto* v : {&c.finished, &c.partial}) std::erase(*v, k);
+    for (auto* v : {&c.finished, &c.failed, &c.partial}) std::erase(*v, k);
     c.damaged.push_back(k);
     const bool finished = fs::exists(shard_file(dir, k));
     c.broken += "  shard " + std::to_string(k) + ": " + shard_file(dir, k).string() + (finished ? "" : ".partial") +
@@ -168,11 +174,13 @@ int report(const ShardCensus& c, const ClusterPlan& plan, const std::string& dir
   std::cout << "finished " << c.finished.size() << ": " << list(c.finished) << "\n"
             << "running  " << c.running.size() << ": " << list(c.running) << "\n"
             << c.running_detail << "pending  " << c.pending.size() << ": " << list(c.pending) << "\n"
-            << c.pending_detail << "partial  " << c.partial.size() << ": " << list(c.partial) << "\n"
+            << c.pending_detail << "failed   " << c.failed.size() << ": " << list(c.failed) << "\n"
+            << c.failed_detail << "partial  " << c.partial.size() << ": " << list(c.partial) << "\n"
             << c.detail << "missing  " << c.missing.size() << ": " << list(c.missing) << "\n"
             << c.missing_detail;
   if (!c.damaged.empty()) std::cout << "damaged  " << c.damaged.size() << ": " << list(c.damaged) << "\n" << c.broken;
   std::vector<int> redo = c.partial;
+  redo.insert(redo.end(), c.failed.begin(), c.failed.end());
   redo.insert(redo.end(), c.missing.begin(), c.missing.end());
   redo.insert(redo.end(), c.damaged.begin(), c.damaged.end());
   std::sort(redo.begin(), redo.end());
@@ -228,12 +236,13 @@ int run_status(const std::string& dir) {
 
 void add_status_command(CLI::App& app, std::function<int()>& action) {
   auto* st = app.add_subcommand(
-      "status", "Which shards of a `chaosweep slurm` directory are finished, running, pending, partial or missing");
+      "status", "Which shards of a `chaosweep slurm` directory are finished, running, pending, failed, partial or missing");
   st->footer(
-      "Prints one line per shard state and the --array= list of the shards to resubmit: partial,\n"
-      "missing or damaged (a shard file that cannot be read, or that merge would refuse as another\n"
-      "shard's, another sweep's or another spec's file, named with the reason; remove it before\n"
-      "resubmitting): sbatch --array=LIST DIR/sweep.sbatch. A shard whose output lock is\n"
+      "Prints one line per shard state and the --array= list of the shards to resubmit: failed\n"
+      "(SLURM says its task ended otherwise than COMPLETED: FAILED, TIMEOUT, CANCELLED, ...),\n"
+      "partial, missing or damaged (a shard file that cannot be read, or that merge would refuse\n"
+      "as another shard's, another sweep's or another spec's file, named with the reason; remove\n"
+      "it before resubmitting): sbatch --array=LIST DIR/sweep.sbatch. A shard whose output lock is\n"
       "held, or whose task SLURM (squeue; sacct, or scontrol without accounting) reports pending or\n"
       "running, is live and not resubmitted; a dead one is named with its job's state and exit code,\n"
       "or 'no job and no lock'. Without squeue on PATH, or jobs recorded by --submit, the locks\n"

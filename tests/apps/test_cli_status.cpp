@@ -96,10 +96,13 @@ TEST(CliStatusSlurm, LiveTasksAreRunningOrPendingAndDeadOnesAreResubmittedWithTh
   EXPECT_TRUE(has(r.out, "running  1: 1\n")) << r.out;
   EXPECT_TRUE(has(r.out, "  shard 1: 4 of 10 runs, job 500_1 RUNNING\n")) << r.out;
   EXPECT_TRUE(has(r.out, "pending  1: 2\n")) << r.out;
-  EXPECT_TRUE(has(r.out, "partial  2: 3,5\n")) << r.out;
-  EXPECT_TRUE(has(r.out, "  shard 3: 4 of 10 runs; job 500_3 FAILED (exit 1:0), no lock\n")) << r.out;
-  EXPECT_TRUE(has(r.out, "  shard 5: 4 of 10 runs; no job and no lock\n")) << r.out;
-  EXPECT_TRUE(has(r.out, "missing  1: 4\n  shard 4: job 500_4 CANCELLED (exit 0:15), no lock\n")) << r.out;
+  // Ended otherwise than COMPLETED: failed, with the rows left (or none).
+  EXPECT_TRUE(has(r.out,
+                  "failed   2: 3,4\n  shard 3: 4 of 10 runs; job 500_3 FAILED (exit 1:0), no lock\n"
+                  "  shard 4: no rows; job 500_4 CANCELLED (exit 0:15), no lock\n"))
+      << r.out;
+  EXPECT_TRUE(has(r.out, "partial  1: 5\n  shard 5: 4 of 10 runs; no job and no lock\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "missing  0: -\n")) << r.out;
   EXPECT_TRUE(has(r.out, "resubmit: --array=3,4,5\n")) << r.out;
   EXPECT_FALSE(has(r.out, "note:")) << r.out;
   // The ids go in as argv words of their own, in the forms parsed.
@@ -133,7 +136,7 @@ TEST(CliStatusSlurm, WithoutAccountingStorageEndedTasksComeFromScontrol) {
                   "note: sacct failed (sacct: error: Slurm accounting storage is disabled): ended tasks "
                   "from scontrol show job"))
       << r.out;
-  EXPECT_TRUE(has(r.out, "  shard 3: 4 of 10 runs; job 500_3 FAILED (exit 2:0), no lock\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "failed   1: 3\n  shard 3: 4 of 10 runs; job 500_3 FAILED (exit 2:0), no lock\n")) << r.out;
   EXPECT_TRUE(has(r.out, "pending  2: 4,5\n  shard 5: 4 of 10 runs, job 500_5 PENDING\n")) << r.out;
   EXPECT_TRUE(has(r.out, "resubmit: --array=1,2,3\n")) << r.out;
   EXPECT_EQ(read_file(c.bin + "/scontrol.args"), "-o\nshow\njob\n500\n");
