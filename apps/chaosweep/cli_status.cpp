@@ -236,7 +236,8 @@ int run_status(const std::string& dir) {
 
 void add_status_command(CLI::App& app, std::function<int()>& action) {
   auto* st = app.add_subcommand(
-      "status", "Which shards of a `chaosweep slurm` directory are finished, running, pending, failed, partial or missing");
+      "status",
+      "Which shards of a `chaosweep slurm` directory are finished, running, pending, failed, partial or missing");
   st->footer(
       "Prints one line per shard state and the --array= list of the shards to resubmit: failed\n"
       "(SLURM says its task ended otherwise than COMPLETED: FAILED, TIMEOUT, CANCELLED, ...),\n"
