@@ -204,8 +204,10 @@ ResultSet ResultSet::load_some(const std::vector<std::string>& paths, const std:
     }
   }
   // The columns every file has, loaded or not (with the first file's kinds).
-  for (const auto& [name, type] : kinds[0]) {
-    const bool text = type == Column::Type::text;
+  for (const auto& kind : kinds[0]) {
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one.
+    const std::string& name = kind.first;
+    const bool text = kind.second == Column::Type::text;
     bool everywhere = true;
     for (const auto& k : kinds)
       everywhere = everywhere && std::any_of(k.begin(), k.end(), [&](const auto& t) {
