@@ -164,6 +164,16 @@ void read_obstacles(const toml::table& t, const std::string& path, bool relative
   }
 }
 
+// A clutter seed: whole and at most 2^53 (number() refuses larger TOML
+// integers; a larger float would make the uint64_t conversion undefined).
+std::uint64_t clutter_seed(const toml::node& node, const std::string& path, const std::string& where) {
+  const double v = number(node, path, where);
+  constexpr double exact = 9007199254740992.0;  // 2^53
+  if (!(v >= 0 && v <= exact && v == std::floor(v)))
+    fail(path, where + " = " + shown(v) + " must be a whole number in [0, 2^53]");
+  return std::uint64_t(v);
+}
+
 // The clutter table's values, in metres (`unit`: metres per unit).
 ClutterSpec read_clutter_table(const toml::table& ct, const std::string& path, bool relative, double unit) {
   ClutterSpec spec;
@@ -172,11 +182,12 @@ ClutterSpec read_clutter_table(const toml::table& ct, const std::string& path, b
   spec.gap = 0.02 * (relative ? unit : 50.0);
   for (auto&& [k, node] : ct) {
     const std::string key(k.str()), where = "clutter." + key;
-    const double v = number(node, path, where);
     if (key == "seed") {
-      if (!(v >= 0 && v == std::floor(v))) fail(path, where + " must be a whole number >= 0");
-      spec.seed = std::uint64_t(v);
-    } else if (key == "occupancy") {
+      spec.seed = clutter_seed(node, path, where);
+      continue;
+    }
+    const double v = number(node, path, where);
+    if (key == "occupancy") {
       if (!(v >= 0 && v <= 0.6)) fail(path, where + " must be in [0, 0.6]");
       spec.occupancy = v;
     } else if (key == "min_side" || key == "max_side" || key == "gap") {

@@ -98,7 +98,7 @@ void check_kinds(const std::string& path) {
 class Side {
  public:
   Side(const std::string& path, const Compared& compared, std::size_t block_rows)
-      : reader_(path, names(compared), block_rows) {
+      : path_(path), i64_names_(compared.i64), reader_(path, names(compared), block_rows) {
     block_.resize_like(compared);
     nf_ = compared.f64.size();
     ni_ = compared.i64.size();
@@ -117,7 +117,14 @@ class Side {
       if (reader_.type(c) == Column::Type::i64) {
         block_.i64[k] = reader_.i64(c);
       } else {
-        for (double v : reader_.f64(c)) block_.i64[k].push_back(std::int64_t(v));
+        // An integer column an older engine stored as numbers: a value no
+        // int64 holds (NaN, inf, beyond 2^63) would make the cast undefined.
+        for (double v : reader_.f64(c)) {
+          if (!(std::fabs(v) < 9.2e18))
+            throw std::runtime_error(path_ + ": column '" + i64_names_[k] + "' holds a value that is not an integer (" +
+                                     std::to_string(v) + ")");
+          block_.i64[k].push_back(std::int64_t(v));
+        }
       }
     }
     for (std::size_t k = 0; k < nt_; ++k, ++c) block_.text[k] = reader_.text(c);
@@ -140,6 +147,8 @@ class Side {
     for (const char* g : {"status", "variant", "env", "coverage_time", "size_x", "size_y", "sr"}) n.emplace_back(g);
     return n;
   }
+  std::string path_;
+  std::vector<std::string> i64_names_;
   ColumnBlockReader reader_;
   Rows block_;
   std::size_t nf_ = 0, ni_ = 0, nt_ = 0;

@@ -148,6 +148,14 @@ TEST(SweepSpec, IntegersBeyondTwoToThe53AreRefusedNamingTheKey) {
   } catch (const std::runtime_error& x) {
     EXPECT_TRUE(has(x.what(), "environment env.toml: clutter.seed = 9223372036854775807 is too large")) << x.what();
   }
+  // A float seed beyond 2^53 (found by the fuzzer: its conversion was undefined behaviour).
+  try {
+    parse_environment("clutter = { seed = 8888888888888888888888888888.03 }\n", "env.toml", 10, 10);
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& x) {
+    EXPECT_TRUE(has(x.what(), "environment env.toml: clutter.seed = 8.88889e+27 must be a whole number in [0, 2^53]"))
+        << x.what();
+  }
 }
 
 TEST(SweepSpec, AValueOfTheWrongTypeIsNamedOnce) {
