@@ -8,6 +8,12 @@
 
 namespace chaosweep {
 
+namespace {
+// k * runs overflows int64 for runs near 1e18; GCC's 128-bit integer holds it.
+__extension__ using int128 = __int128;
+int128 wide(std::int64_t v) { return v; }
+}  // namespace
+
 std::vector<std::int64_t> calibration_run_ids(std::int64_t runs, std::int64_t n, std::uint64_t seed) {
   std::vector<std::int64_t> ids;
   if (n >= runs) {
@@ -17,7 +23,7 @@ std::vector<std::int64_t> calibration_run_ids(std::int64_t runs, std::int64_t n,
   std::uint64_t state = seed;
   for (std::int64_t k = 0; k < n; ++k) {
     // Slice k is [k*runs/n, (k+1)*runs/n): non-empty since n < runs.
-    const std::int64_t lo = std::int64_t((__int128)k * runs / n), hi = std::int64_t((__int128)(k + 1) * runs / n);
+    const std::int64_t lo = std::int64_t(wide(k) * runs / n), hi = std::int64_t(wide(k + 1) * runs / n);
     ids.push_back(lo + std::min(hi - lo - 1, std::int64_t(uniform01(state) * double(hi - lo))));
   }
   return ids;

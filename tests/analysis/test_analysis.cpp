@@ -214,7 +214,7 @@ TEST(Tables, SummaryAndBestOfTheColumnsTheyNeedAreThoseOfEveryColumn) {
   for (const std::vector<std::string>& files :
        {std::vector<std::string>{dir.file("a.h5")}, std::vector<std::string>{dir.file("a.h5"), dir.file("b.h5")}}) {
     const ResultSet all = ResultSet::load(files);
-    for (const std::string& name : {"summary", "best"}) {
+    for (const std::string name : {"summary", "best"}) {
       for (const auto& [by, params] :
            {std::pair<std::string, std::string>{"", ""}, {"label", ""}, {"label", "ds_index,c,f"}, {"env,sr", ""}}) {
         TableOptions opt;
@@ -233,7 +233,9 @@ TEST(Tables, SummaryAndBestOfTheColumnsTheyNeedAreThoseOfEveryColumn) {
     const ResultSet best = ResultSet::load(files, {}, {"sr", "f", "seed"});  // sr varies only across the files
     EXPECT_EQ(best.has("sr"), files.size() == 2);
     EXPECT_TRUE(best.has("f"));
-    if (best.has("sr")) EXPECT_EQ(best.num("sr"), all.num("sr"));
+    if (best.has("sr")) {
+      EXPECT_EQ(best.num("sr"), all.num("sr"));
+    }
     EXPECT_EQ(best.num("f"), all.num("f"));
   }
   TableOptions opt;

@@ -28,7 +28,7 @@ void expect_nothing_written(const std::string& out) {
   EXPECT_FALSE(fs::exists(out + ".partial")) << out;
 }
 
-const char* small_sweep = R"(
+const char* bad_input_sweep = R"(
 [sweep]
 name = "bad-input"
 [fixed]
@@ -87,7 +87,7 @@ TEST(CliRun, NanInfAndOutOfRangeFlagValuesNameTheFlagAndTheRangeAndExit2) {
 
 TEST(CliSweep, OutOfRangeAndWrongTypeFlagsAreNamedAndNothingIsWritten) {
   TempDir tmp;
-  write_file(tmp.file("s.toml"), small_sweep);
+  write_file(tmp.file("s.toml"), bad_input_sweep);
   const std::string base = "sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("out.h5") + " ";
   struct Case {
     const char* flags;
@@ -147,7 +147,7 @@ TEST(CliSweep, EachKindOfBadSpecIsNamedExits2AndWritesNothing) {
 TEST(CliSweep, AnEnvironmentThatDoesNotExistIsNamedAndNothingIsWritten) {
   TempDir tmp;
   for (const std::string& env : {std::string("no_such_env"), tmp.file("missing/env.toml")}) {
-    std::string spec = small_sweep;
+    std::string spec = bad_input_sweep;
     spec.insert(spec.find("size = 12"), "env = \"" + env + "\"\n");
     write_file(tmp.file("s.toml"), spec);
     const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("out.h5"));
@@ -156,7 +156,7 @@ TEST(CliSweep, AnEnvironmentThatDoesNotExistIsNamedAndNothingIsWritten) {
     expect_nothing_written(tmp.file("out.h5"));
   }
   // On an axis: the axis and the position are named.
-  std::string spec = small_sweep;
+  std::string spec = bad_input_sweep;
   spec += "env = [\"empty\", \"no_such_env\"]\n";
   write_file(tmp.file("s.toml"), spec);
   const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("out.h5"));
@@ -189,7 +189,7 @@ TEST(CliSweep, ABadEnvironmentFileIsNamedExits2AndWritesNothing) {
            Case{"start = [1.5, 0.5]\n", "env.toml: 'start' = (18, 6) m is outside the map [0, 12] x [0, 12] m"},
        }) {
     write_file(tmp.file("env.toml"), c.env);
-    std::string spec = small_sweep;
+    std::string spec = bad_input_sweep;
     spec.insert(spec.find("size = 12"), "env = \"" + tmp.file("env.toml") + "\"\n");
     write_file(tmp.file("s.toml"), spec);
     const auto r = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("out.h5"));
@@ -220,7 +220,8 @@ TEST(CliRun, OverlappingObstaclesAreOneObstacleTheirUnion) {
 
 // ------------------------------------------------------------ result files
 
-namespace {
+// Outside the anonymous namespace: the test classes derive from it (GCC
+// warns of that in a unity batch, -Wsubobject-linkage).
 
 // One set of result files for every test below: a whole sweep, its two
 // shards, a shard of another spec, and broken or foreign files.
@@ -228,8 +229,8 @@ class BadResultFiles : public testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new TempDir;
-    write_file(file("s.toml"), small_sweep);
-    std::string other = small_sweep;
+    write_file(file("s.toml"), bad_input_sweep);
+    std::string other = bad_input_sweep;
     other.replace(other.find("max_time = 500"), 14, "max_time = 600");
     write_file(file("other.toml"), other);
     const std::string sweep = "sweep " + file("s.toml") + " -q -o ";
@@ -278,8 +279,6 @@ class BadResultFiles : public testing::Test {
 };
 TempDir* BadResultFiles::dir_ = nullptr;
 bool BadResultFiles::ok_ = false;
-
-}  // namespace
 
 TEST_F(BadResultFiles, MergeNamesABrokenOrForeignShardAndWritesNothing) {
   for (const Bad& b : bad_files()) {

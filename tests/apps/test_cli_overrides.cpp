@@ -50,7 +50,7 @@ TEST(CliSet, ASweepRunsStoresAndResumesTheChangedSpec) {
   EXPECT_EQ(same.exit_code, 0) << same.out << same.err;
   // --resume holds the file to the same flags.
   EXPECT_EQ(run_chaosweep(args + sets + " --resume").exit_code, 0);
-  for (const std::string other : {std::string(" --set sr=4 --set 'A=[0.45, 0.55]'"), std::string()}) {
+  for (const std::string& other : {std::string(" --set sr=4 --set 'A=[0.45, 0.55]'"), std::string()}) {
     const auto refused = run_chaosweep(args + other + " --resume");
     EXPECT_EQ(refused.exit_code, 2) << other << ": " << refused.err;
   }

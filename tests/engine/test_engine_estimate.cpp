@@ -9,13 +9,15 @@
 
 using namespace chaosweep;
 
+__extension__ using int128 = __int128;
+
 TEST(WallTimeEstimate, CalibrationRunsAreOneFromEachEqualSliceAndRepeatable) {
-  for (const auto [runs, n] : {std::pair<std::int64_t, std::int64_t>{1000, 64}, {65, 64}, {1e12, 1024}}) {
+  for (const auto& [runs, n] : {std::pair<std::int64_t, std::int64_t>{1000, 64}, {65, 64}, {1e12, 1024}}) {
     const auto ids = calibration_run_ids(runs, n, 7);
     ASSERT_EQ(std::int64_t(ids.size()), n);
     for (std::int64_t k = 0; k < n; ++k) {
-      EXPECT_GE(ids[k], std::int64_t((__int128)k * runs / n));
-      EXPECT_LT(ids[k], std::int64_t((__int128)(k + 1) * runs / n));
+      EXPECT_GE(ids[k], std::int64_t((int128)k * runs / n));
+      EXPECT_LT(ids[k], std::int64_t((int128)(k + 1) * runs / n));
     }
     EXPECT_EQ(calibration_run_ids(runs, n, 7), ids);
     EXPECT_NE(calibration_run_ids(runs, n, 8), ids) << "the places are drawn, not fixed";

@@ -30,7 +30,7 @@ SweepSpec with(const std::vector<std::string>& args, const std::string& text = s
   return load_sweep_spec(tmp.file("s.toml"), sets(args));
 }
 
-std::string error_of(const std::vector<std::string>& args, const std::string& text = spec_text) {
+std::string override_error_of(const std::vector<std::string>& args, const std::string& text = spec_text) {
   try {
     with(args, text);
   } catch (const SpecError& e) {
@@ -86,17 +86,17 @@ TEST(SpecOverrides, TheStoredTextIsTheChangedSpecAndNamesTheFlags) {
 }
 
 TEST(SpecOverrides, BadKeysAndValuesGetTheSpecsOwnErrorsNamingTheFlag) {
-  EXPECT_NE(error_of({"sr=-1"}).find("must be a number in [0.001, 10000] (the spec with --set sr=-1)"),
+  EXPECT_NE(override_error_of({"sr=-1"}).find("must be a number in [0.001, 10000] (the spec with --set sr=-1)"),
             std::string::npos)
-      << error_of({"sr=-1"});
-  EXPECT_NE(error_of({"nope=3"}).find("unknown key 'nope'"), std::string::npos);
-  EXPECT_NE(error_of({"A=[0.4,"}).find("--set A=[0.4,: the value is not a TOML value"), std::string::npos);
-  EXPECT_NE(error_of({"sr=1", "fixed.sr=2"}).find("'sr' is given twice"), std::string::npos);
-  EXPECT_NE(error_of({"sweep.extends=other.toml"}).find("only name and description"), std::string::npos);
-  EXPECT_NE(error_of({"a.b.c=1"}).find("the key must be KEY, fixed.KEY, axes.KEY"), std::string::npos);
+      << override_error_of({"sr=-1"});
+  EXPECT_NE(override_error_of({"nope=3"}).find("unknown key 'nope'"), std::string::npos);
+  EXPECT_NE(override_error_of({"A=[0.4,"}).find("--set A=[0.4,: the value is not a TOML value"), std::string::npos);
+  EXPECT_NE(override_error_of({"sr=1", "fixed.sr=2"}).find("'sr' is given twice"), std::string::npos);
+  EXPECT_NE(override_error_of({"sweep.extends=other.toml"}).find("only name and description"), std::string::npos);
+  EXPECT_NE(override_error_of({"a.b.c=1"}).find("the key must be KEY, fixed.KEY, axes.KEY"), std::string::npos);
   const std::string zipped = "[fixed]\nsr = 2\n[[zip]]\nA = [0.4, 0.5]\nB = [0.1, 0.2]\n";
-  EXPECT_NE(error_of({"A=0.3"}, zipped).find("'A' is set by the spec's [[zip]]"), std::string::npos)
-      << error_of({"A=0.3"}, zipped);
+  EXPECT_NE(override_error_of({"A=0.3"}, zipped).find("'A' is set by the spec's [[zip]]"), std::string::npos)
+      << override_error_of({"A=0.3"}, zipped);
   for (const std::string bad : {"A", "=3", "A="}) {
     try {
       parse_override(bad);

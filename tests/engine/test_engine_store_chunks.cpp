@@ -105,7 +105,9 @@ TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
     for (std::size_t c = 0; c < own.size(); ++c) {
       const bool has_message = message_every && (c * 1024 + message_every - 1) / message_every * message_every <
                                                     std::min<std::size_t>(5000, (c + 1) * 1024);
-      if (!has_message) EXPECT_EQ(own[c], hdf5[c]) << "chunk " << c;
+      if (!has_message) {
+        EXPECT_EQ(own[c], hdf5[c]) << "chunk " << c;
+      }
     }
     expect_same_columns(tmp.file("own.h5"), tmp.file("hdf5.h5"));
     EXPECT_EQ(read_text_column(tmp.file("own.h5"), "message")[3000], message_every ? "run 3000 said something" : "");

@@ -198,7 +198,9 @@ TEST(StoreReaders, FilesOutOfRunIdOrderAreAlignedInPassesWithTheSameCounts) {
       EXPECT_EQ(r.groups[g].median_a, ordered.groups[g].median_a);
       EXPECT_EQ(r.groups[g].p_value, ordered.groups[g].p_value);
     }
-    if (x == a) EXPECT_EQ(r.text(), ordered.text()) << "A's order decides the differences listed";
+    if (x == a) {
+      EXPECT_EQ(r.text(), ordered.text()) << "A's order decides the differences listed";
+    }
   }
 }
 
