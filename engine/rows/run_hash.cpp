@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cstdio>
+#include <vector>
 
 #include "kernels/core/param_table.hpp"
 
@@ -63,18 +64,49 @@ std::uint64_t fnv1a64(const std::string& bytes) {
   return f.h;
 }
 
+// The hash of "env=ENV;" then "NAME=%a;" per parameter, in table order.
+// FNV-1a is a chain (each byte waits for the last), so a thread keeps its
+// previous run's values and the state before each parameter: runs of one
+// sweep differ in a few axes, and the hash resumes at the first parameter
+// that changed (the table's ~40 planner-specific parameters precede A, B, C).
 std::int64_t param_hash(const RunParams& p, const std::string& env) {
-  // The hash of "env=ENV;" then "NAME=%a;" per parameter, in table order.
+  struct Last {
+    bool valid = false;
+    std::string env;
+    std::vector<std::uint64_t> bits;    // each parameter's value, as bits
+    std::vector<std::uint64_t> before;  // FNV state before parameter i
+  };
+  thread_local Last last;
+  const auto& table = param_table();
+  const std::size_t n = table.size();
+  std::size_t from = 0;
   Fnv1a f;
-  f.add("env=");
-  f.add(env);
-  f.add(';');
-  for (const ParamInfo& info : param_table()) {
-    f.add(info.name);
+  if (last.valid && last.env == env) {
+    while (from < n && std::bit_cast<std::uint64_t>(table[from].get(p)) == last.bits[from]) ++from;
+    if (from == n) {
+      // Same parameters: the state after the last one is stored at n.
+      return std::int64_t(last.before[n]);
+    }
+    f.h = last.before[from];
+  } else {
+    f.add("env=");
+    f.add(env);
+    f.add(';');
+    last.env = env;
+    last.bits.assign(n, 0);
+    last.before.assign(n + 1, 0);
+  }
+  for (std::size_t i = from; i < n; ++i) {
+    const double v = table[i].get(p);
+    last.before[i] = f.h;
+    last.bits[i] = std::bit_cast<std::uint64_t>(v);
+    f.add(table[i].name);
     f.add('=');
-    add_hex_float(f, info.get(p));
+    add_hex_float(f, v);
     f.add(';');
   }
+  last.before[n] = f.h;
+  last.valid = true;
   return std::int64_t(f.h);
 }
 

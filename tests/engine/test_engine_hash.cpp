@@ -66,6 +66,25 @@ TEST(ParamHash, EqualsTheSnprintfDefinitionForEveryKindOfDouble) {
   }
 }
 
+// param_hash resumes from the previous call's state at the first parameter
+// that changed: runs that differ anywhere (one parameter, several, none, the
+// environment, -0.0 for 0.0, one NaN for another) must still hash as defined.
+TEST(ParamHash, ConsecutiveRunsThatShareParametersHashAsDefined) {
+  const auto& table = param_table();
+  std::mt19937_64 rng(21);
+  RunParams q;
+  std::string env = "empty";
+  const double values[] = {
+      0.0,    -0.0, 0.5, 0.25, std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::quiet_NaN(),
+      1e-300, 3.0};
+  for (int k = 0; k < 20000; ++k) {
+    const int changes = int(rng() % 4);  // 0: the same run again
+    for (int c = 0; c < changes; ++c) table[rng() % table.size()].set(q, values[rng() % std::size(values)]);
+    if (rng() % 50 == 0) env = rng() % 2 ? "empty" : "maps/m" + std::to_string(rng() % 3) + ".txt";
+    ASSERT_EQ(param_hash(q, env), reference_param_hash(q, env)) << k;
+  }
+}
+
 // Hashes stored in result files by the engine before param_hash was
 // rewritten (chaosweep sweep of the shipped specs, read with h5py).
 TEST(ParamHash, MatchesTheHashesStoredInOlderResultFiles) {
