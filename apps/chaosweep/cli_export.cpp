@@ -52,7 +52,12 @@ std::string value_text(const ColumnBlockReader& block, std::size_t c, Column::Ty
     return csv ? inf : "\"" + inf + "\"";  // JSON has no infinity
   }
   const std::string& t = block.text(c)[r];
-  return csv ? csv_field(t) : "\"" + json_escape(t) + "\"";
+  if (csv) return csv_field(t);
+  // Appended, not "\"" + ...: GCC 12 misreads that temporary's insert (-Wrestrict).
+  std::string quoted(1, '"');
+  quoted += json_escape(t);
+  quoted += '"';
+  return quoted;
 }
 
 // Block by block (docs/store.md, "Readers"): memory bounded by a block, not

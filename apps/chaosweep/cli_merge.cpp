@@ -7,6 +7,7 @@
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
+#include "engine/run/thread_batch_evaluator.hpp"
 #include "engine/store/h5_merge.hpp"
 #include "engine/store/output_lock.hpp"
 #include "engine/store/rollback_driver.hpp"
@@ -47,6 +48,7 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
   auto inputs = std::make_shared<std::vector<std::string>>();
   auto slurm_dir = std::make_shared<std::string>();
   auto force = std::make_shared<bool>(false);
+  auto threads = std::make_shared<int>(0);
   cmd->add_option("-o,--output", *out, "merged result file")->required();
   auto* shards = cmd->add_option("shards", *inputs, "shard result files")->check(CLI::ExistingFile);
   cmd->add_option("--slurm-dir", *slurm_dir, "the shards of this `chaosweep slurm` directory")
@@ -54,8 +56,10 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
       ->excludes(shards);
   cmd->add_flag("--force", *force,
                 "replace an existing OUT, and merge even though OUT.partial (an interrupted sweep) exists");
-  cmd->callback([out, inputs, slurm_dir, force, &action] {
-    action = [out, inputs, slurm_dir, force]() -> int {
+  cmd->add_option("--threads", *threads, "threads that unpack and compress the chunks (default: all cores)")
+      ->check(CLI::Range(0, 4096));
+  cmd->callback([out, inputs, slurm_dir, force, threads, &action] {
+    action = [out, inputs, slurm_dir, force, threads]() -> int {
       static std::string temp, journal, lock_file;  // for the signal handler: alive to the end
       try {
         if (!slurm_dir->empty()) {
@@ -79,7 +83,12 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
         cleanup_paths[2] = lock_file.c_str();
         std::signal(SIGINT, on_merge_signal);
         std::signal(SIGTERM, on_merge_signal);
-        const MergeReport r = merge_results(*inputs, *out);
+        const ThreadBatchEvaluator evaluator(*threads);
+        MergeOptions options;
+        options.parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
+          evaluator.parallel(n, body);
+        };
+        const MergeReport r = merge_results(*inputs, *out, options);
         std::signal(SIGINT, SIG_DFL);
         std::signal(SIGTERM, SIG_DFL);
         std::cout << r.text() << "\n";

@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -12,7 +13,9 @@
 #include <stdexcept>
 
 #include "engine/spec/shard.hpp"
+#include "engine/store/chunk_filters.hpp"
 #include "engine/store/h5_detail.hpp"
+#include "engine/store/h5_file_rows.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/input_identity.hpp"
 #include "engine/store/provenance.hpp"
@@ -26,10 +29,6 @@ using h5::Handle;
 namespace {
 
 [[noreturn]] void fail(const std::string& what) { throw std::runtime_error(what); }
-
-// Rows read and written at once, in bytes: a block takes as many rows of
-// every shard as fit (at least one each).
-constexpr std::size_t block_bytes = std::size_t(64) << 20;
 
 // A shard file's place in its sweep, from its provenance attributes.
 struct ShardOf {
@@ -134,13 +133,57 @@ void reclaim(hid_t type, std::vector<unsigned char>& buf) {
   H5Dvlen_reclaim(type, space.id, H5P_DEFAULT, buf.data());
 }
 
-// Shard K of N holds run_ids K, K+N, ... in order (a sweep writes them so):
-// any other row means the file is damaged. Reads run_id in blocks.
-void check_run_ids(const Input& in, std::int64_t runs_total) {
+// A shard cannot hold more rows than its share of the runs.
+void check_row_count(const Input& in, std::int64_t runs_total) {
   const std::int64_t want = shard_size(runs_total, in.shard.index, in.shard.count);
   if (std::int64_t(in.rows) > want)
     fail(in.path + " is damaged: it holds " + std::to_string(in.rows) + " rows, but shard " + in.shard.shard + " of " +
          std::to_string(runs_total) + " runs has " + std::to_string(want));
+}
+
+// Shard K of N holds run_ids K, K+N, ... in order (a sweep writes them so):
+// any other row means the file is damaged.
+bool run_id_is_right(const Input& in, hsize_t j, std::int64_t id) {
+  return id == shard_run_id(std::int64_t(j), in.shard.index, in.shard.count);
+}
+
+void check_run_id(const Input& in, hsize_t j, std::int64_t id, std::int64_t runs_total) {
+  if (run_id_is_right(in, j, id)) return;
+  const std::int64_t expect = shard_run_id(std::int64_t(j), in.shard.index, in.shard.count);
+  const std::string row = "row " + std::to_string(j) + " has run_id " + std::to_string(id);
+  if (id < 0 || id >= runs_total)
+    fail(in.path + " is damaged: " + row + ", outside the spec's runs 0.." + std::to_string(runs_total - 1) +
+         " (re-run shard " + in.shard.shard + ")");
+  fail(in.path + " is damaged: " + row + ", not " + std::to_string(expect) + " (shard " + in.shard.shard +
+       " holds run_ids " + std::to_string(in.shard.index) + ", " + std::to_string(in.shard.index + in.shard.count) +
+       ", ... in order; re-run it)");
+}
+
+// run_id of the `n` rows at `rows`, `row_size` bytes apart, run_id at
+// `offset`: rows [first, first + n) of shard `in`.
+void check_run_ids(const Input& in, hsize_t first, hsize_t n, const unsigned char* rows, std::size_t row_size,
+                   std::size_t offset, std::int64_t runs_total) {
+  for (hsize_t r = 0; r < n; ++r) {
+    std::int64_t id;
+    std::memcpy(&id, rows + std::size_t(r) * row_size + offset, 8);
+    check_run_id(in, first + r, id, runs_total);
+  }
+}
+
+// Where run_id sits in a row of `type` (H5Dget_type's or native), when it is
+// a 64-bit integer as a sweep writes it; npos otherwise (a hand-made file:
+// its run_ids are read through HDF5's conversion before the merge).
+std::size_t int64_run_id_offset(hid_t type) {
+  const int i = H5Tget_member_index(type, "run_id");
+  if (i < 0) return std::string::npos;
+  Handle mt{H5Tget_member_type(type, unsigned(i)), H5Tclose};
+  return H5Tequal(mt.id, H5T_NATIVE_INT64) > 0 ? H5Tget_member_offset(type, unsigned(i)) : std::string::npos;
+}
+
+// Every run_id of `in`, read in blocks: for a merge that writes nothing (runs
+// are missing), which must still name a damaged shard. A merge that writes
+// checks each block as it copies it.
+void check_all_run_ids(const Input& in, std::int64_t runs_total) {
   Handle mem{H5Tcreate(H5T_COMPOUND, 8), H5Tclose};
   H5Tinsert(mem.id, "run_id", 0, H5T_NATIVE_INT64);
   std::vector<unsigned char> buf;
@@ -148,19 +191,7 @@ void check_run_ids(const Input& in, std::int64_t runs_total) {
   for (hsize_t first = 0; first < in.rows; first += block) {
     const hsize_t n = std::min(block, in.rows - first);
     read_rows(in, first, n, buf, mem.id);
-    for (hsize_t r = 0; r < n; ++r) {
-      std::int64_t id;
-      std::memcpy(&id, buf.data() + 8 * r, 8);
-      const std::int64_t j = std::int64_t(first + r), expect = shard_run_id(j, in.shard.index, in.shard.count);
-      if (id == expect) continue;
-      const std::string row = "row " + std::to_string(j) + " has run_id " + std::to_string(id);
-      if (id < 0 || id >= runs_total)
-        fail(in.path + " is damaged: " + row + ", outside the spec's runs 0.." + std::to_string(runs_total - 1) +
-             " (re-run shard " + in.shard.shard + ")");
-      fail(in.path + " is damaged: " + row + ", not " + std::to_string(expect) + " (shard " + in.shard.shard +
-           " holds run_ids " + std::to_string(in.shard.index) + ", " + std::to_string(in.shard.index + in.shard.count) +
-           ", ... in order; re-run it)");
-    }
+    check_run_ids(in, first, n, buf.data(), 8, 0, runs_total);
   }
 }
 
@@ -181,51 +212,206 @@ void allow_open_files(std::size_t n) {
   setrlimit(RLIMIT_NOFILE, &lim);
 }
 
-// Writes the inputs' rows interleaved by run_id to `path` (created).
-void write_merged(std::vector<Input>& inputs, const std::string& path, std::int64_t total, hsize_t per_shard) {
+// The output's chunks: 1024 rows (as a sweep writes), shuffled and deflated.
+constexpr hsize_t out_chunk_rows = 1024;
+constexpr int out_deflate_level = 4;
+// Raw blocks hold at least a chunk of every shard unfiltered: merges of more
+// shards than fit take the converting path alone.
+constexpr std::size_t raw_block_cap = std::size_t(256) << 20;
+
+// Rows [j0, j1) of every shard, `step` at a time, through HDF5's conversion
+// (the path that handles any row: variable-length text has heap ids of its
+// own file, so it must be read and written as strings).
+void write_converted(const std::vector<const Input*>& by_index, hid_t dset, hid_t type, hsize_t total, hsize_t j0,
+                     hsize_t j1, hsize_t step, const std::string& path) {
+  const hsize_t count = by_index.size();
+  const std::size_t rs = H5Tget_size(type);
+  const std::size_t run_id_at = int64_run_id_offset(type);  // npos: checked before
+  std::vector<std::vector<unsigned char>> part(by_index.size());
+  std::vector<unsigned char> out;
+  for (hsize_t j = j0; j < j1; j += step) {
+    const hsize_t first = j * count;
+    const hsize_t n = std::min<hsize_t>(total, std::min(j + step, j1) * count) - first;
+    out.assign(std::size_t(n) * rs, 0);
+    for (hsize_t k = 0; k < count; ++k) {
+      if (!by_index[k]) continue;  // a shard of no runs (more shards than runs)
+      const Input& in = *by_index[k];
+      const hsize_t have = j < in.rows ? std::min({step, j1 - j, in.rows - j}) : 0;
+      read_rows(in, j, have, part[k], type);
+      if (run_id_at != std::string::npos)
+        check_run_ids(in, j, have, part[k].data(), rs, run_id_at, std::int64_t(total));
+      for (hsize_t i = 0; i < have; ++i)
+        std::memcpy(out.data() + std::size_t(i * count + k) * rs, part[k].data() + std::size_t(i) * rs, rs);
+    }
+    Handle fspace{H5Dget_space(dset), H5Sclose};
+    H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &first, nullptr, &n, nullptr);
+    Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
+    herr_t rc;
+    H5E_BEGIN_TRY { rc = H5Dwrite(dset, type, mspace.id, fspace.id, H5P_DEFAULT, out.data()); }
+    H5E_END_TRY;
+    for (auto& p : part) reclaim(type, p);  // the strings `out` pointed to too
+    if (rc < 0) fail("cannot write " + path + " (the disk may be full)");
+  }
+}
+
+void run_parallel(const ParallelFor& parallel, std::size_t n, const std::function<void(std::size_t)>& body) {
+  if (parallel) {
+    parallel(n, body);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) body(i);
+  }
+}
+
+// Rows [j0, j0 + per_shard) of every shard as the files store them (`rows`,
+// per shard), their whole chunks read raw and unfiltered on many threads.
+// False when a chunk is not as expected or holds a variable-length string
+// (a heap id of its own file, which a copy would leave dangling): that block
+// then takes the converting path.
+bool read_raw_block(const std::vector<const Input*>& by_index, hsize_t j0, hsize_t per_shard, const FileRows& f,
+                    std::size_t run_id_at, std::int64_t runs_total, const ParallelFor& parallel,
+                    std::vector<std::vector<unsigned char>>& rows) {
+  const std::size_t chunk_bytes = std::size_t(out_chunk_rows) * f.row_size;
+  struct Task {
+    std::size_t shard;
+    hsize_t chunk;  // first row, in the shard
+    std::vector<unsigned char> stored;
+  };
+  std::vector<Task> tasks;
+  for (std::size_t k = 0; k < by_index.size(); ++k) {
+    if (!by_index[k]) continue;
+    const Input& in = *by_index[k];
+    rows[k].resize(std::size_t(per_shard) * f.row_size);
+    for (hsize_t c = j0; c < std::min(j0 + per_shard, in.rows); c += out_chunk_rows) {
+      hsize_t size = 0;
+      std::uint32_t mask = 0;
+      if (H5Dget_chunk_storage_size(in.dset->id, &c, &size) < 0 || size == 0) return false;
+      Task t{k, c, std::vector<unsigned char>(size)};
+      herr_t rc;
+      H5E_BEGIN_TRY { rc = H5Dread_chunk(in.dset->id, H5P_DEFAULT, &c, &mask, t.stored.data()); }
+      H5E_END_TRY;
+      if (rc < 0 || mask != 0) return false;
+      tasks.push_back(std::move(t));
+    }
+  }
+  std::atomic<bool> ok{true}, wrong_id{false};
+  run_parallel(parallel, tasks.size(), [&](std::size_t i) {
+    const Task& t = tasks[i];
+    const Input& in = *by_index[t.shard];
+    thread_local std::vector<unsigned char> shuffled_bytes;  // a chunk's worth, kept: no page faults per chunk
+    shuffled_bytes.resize(chunk_bytes);
+    if (!inflate_exactly(t.stored.data(), t.stored.size(), shuffled_bytes.data(), chunk_bytes)) {
+      ok = false;
+      return;
+    }
+    unsigned char* dst = rows[t.shard].data() + std::size_t(t.chunk - j0) * f.row_size;
+    unshuffle(shuffled_bytes.data(), chunk_bytes, f.row_size, dst);
+    const hsize_t valid = std::min(out_chunk_rows, in.rows - t.chunk);
+    for (hsize_t r = 0; r < valid; ++r) {
+      const unsigned char* row = dst + std::size_t(r) * f.row_size;
+      std::int64_t id;
+      std::memcpy(&id, row + run_id_at, 8);
+      if (!run_id_is_right(in, t.chunk + r, id)) wrong_id = true;
+      for (std::size_t m = 0; m < f.offsets.size(); ++m) {
+        if (!f.variable_text[m]) continue;
+        const unsigned char* p = row + f.offsets[m];
+        if (std::any_of(p, p + 16, [](unsigned char b) { return b != 0; })) ok = false;
+      }
+    }
+  });
+  // The damaged row named is the first, as a serial check names it.
+  if (ok && wrong_id)
+    for (const Task& t : tasks) {
+      const Input& in = *by_index[t.shard];
+      check_run_ids(in, t.chunk, std::min(out_chunk_rows, in.rows - t.chunk),
+                    rows[t.shard].data() + std::size_t(t.chunk - j0) * f.row_size, f.row_size, run_id_at, runs_total);
+    }
+  return ok;
+}
+
+// Interleaves `rows` (a raw block of every shard) into the output's chunks,
+// filters them on many threads and writes them as they are.
+void write_raw_block(const std::vector<std::vector<unsigned char>>& rows, hsize_t j0, hsize_t per_shard,
+                     const FileRows& f, hid_t dset, hsize_t total, const ParallelFor& parallel,
+                     const std::string& path) {
+  const hsize_t count = rows.size(), first = j0 * count;
+  const hsize_t n = std::min(total, (j0 + per_shard) * count) - first;
+  const std::size_t chunks = std::size_t((n + out_chunk_rows - 1) / out_chunk_rows);
+  std::vector<std::vector<unsigned char>> stored(chunks);
+  run_parallel(parallel, chunks, [&](std::size_t o) {
+    // The last chunk's rows past the end are zeros, as HDF5 pads them.
+    thread_local std::vector<unsigned char> chunk;
+    chunk.assign(std::size_t(out_chunk_rows) * f.row_size, 0);
+    const hsize_t r0 = hsize_t(o) * out_chunk_rows, r1 = std::min(n, r0 + out_chunk_rows);
+    for (hsize_t r = r0; r < r1; ++r) {
+      const hsize_t run = first + r, k = run % count, j = run / count - j0;
+      std::memcpy(chunk.data() + std::size_t(r - r0) * f.row_size, rows[k].data() + std::size_t(j) * f.row_size,
+                  f.row_size);
+    }
+    stored[o] = deflated(shuffled(chunk, f.row_size), out_deflate_level);
+  });
+  for (std::size_t o = 0; o < chunks; ++o) {
+    const hsize_t at = first + hsize_t(o) * out_chunk_rows;
+    herr_t rc;
+    H5E_BEGIN_TRY { rc = H5Dwrite_chunk(dset, H5P_DEFAULT, 0, &at, stored[o].size(), stored[o].data()); }
+    H5E_END_TRY;
+    if (rc < 0) fail("cannot write " + path + " (the disk may be full)");
+  }
+}
+
+// Writes the inputs' rows interleaved by run_id to `path` (created): blocks
+// of whole chunks copied as bytes where every input allows (filters undone
+// and redone on many threads: no type conversion), the rest converted.
+void write_merged(std::vector<Input>& inputs, const std::string& path, std::int64_t total, hsize_t per_shard,
+                  const MergeOptions& options) {
   const int count = inputs[0].shard.count;
   std::vector<const Input*> by_index(std::size_t(count), nullptr);
   for (const Input& in : inputs) by_index[std::size_t(in.shard.index)] = &in;
   const hid_t type = inputs[0].native->id;
-  const std::size_t rs = H5Tget_size(type);
   Handle fapl{rollback_fapl(), H5Pclose};
   hid_t f;
   H5E_BEGIN_TRY { f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id); }
   H5E_END_TRY;
   if (f < 0) fail("cannot create " + path + ": " + rollback_open_error());
   Handle file{f, H5Fclose};
-  hsize_t dims = hsize_t(total), maxdims = H5S_UNLIMITED, chunk = 1024;
+  hsize_t dims = hsize_t(total), maxdims = H5S_UNLIMITED, chunk = out_chunk_rows;
   Handle space{H5Screate_simple(1, &dims, &maxdims), H5Sclose};
   Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
   H5Pset_chunk(dcpl.id, 1, &chunk);
   H5Pset_shuffle(dcpl.id);
-  H5Pset_deflate(dcpl.id, 4);
+  H5Pset_deflate(dcpl.id, out_deflate_level);
   Handle dset{H5Dcreate2(file.id, "runs", inputs[0].ftype->id, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
   if (dset.id < 0) fail("cannot create /runs in " + path);
-  std::vector<std::vector<unsigned char>> part(static_cast<std::size_t>(count));
-  std::vector<unsigned char> out;
+  const FileRows out_rows = file_rows_of(dset.id);
+  // The file type's run_id (its members in memory order, as H5Dget_type gives).
+  std::size_t run_id_at = std::string::npos;
+  {
+    Handle ftype{H5Dget_type(dset.id), H5Tclose};
+    const int i = H5Tget_member_index(ftype.id, "run_id");
+    if (int64_run_id_offset(ftype.id) != std::string::npos && out_rows.row_size > 0)
+      run_id_at = out_rows.offsets[unsigned(i)];
+  }
+  bool raw = out_rows.row_size > 0 && run_id_at != std::string::npos &&
+             int64_run_id_offset(type) != std::string::npos &&
+             std::size_t(count) * out_chunk_rows * out_rows.row_size <= raw_block_cap;
+  for (const Input& in : inputs) {
+    const FileRows in_rows = file_rows_of(in.dset->id);
+    raw = raw && in_rows.row_size == out_rows.row_size && in_rows.offsets == out_rows.offsets &&
+          in_rows.deflate_level >= 0 && in_rows.chunk_rows == out_chunk_rows;
+  }
   const hsize_t shard_rows = hsize_t(shard_size(total, 0, count));
-  for (hsize_t j0 = 0; j0 < shard_rows; j0 += per_shard) {
-    const hsize_t first = j0 * hsize_t(count);
-    const hsize_t n = std::min<hsize_t>(hsize_t(total), (j0 + per_shard) * hsize_t(count)) - first;
-    out.assign(std::size_t(n) * rs, 0);
-    for (int k = 0; k < count; ++k) {
-      if (!by_index[std::size_t(k)]) continue;  // a shard of no runs (more shards than runs)
-      const Input& in = *by_index[std::size_t(k)];
-      const hsize_t have = j0 < in.rows ? std::min(per_shard, in.rows - j0) : 0;
-      read_rows(in, j0, have, part[std::size_t(k)], type);
-      for (hsize_t i = 0; i < have; ++i)
-        std::memcpy(out.data() + std::size_t(i * hsize_t(count) + hsize_t(k)) * rs,
-                    part[std::size_t(k)].data() + std::size_t(i) * rs, rs);
+  if (!raw) {
+    write_converted(by_index, dset.id, type, hsize_t(total), 0, shard_rows, per_shard, path);
+  } else {
+    const hsize_t chunk_set = hsize_t(count) * out_chunk_rows * out_rows.row_size;
+    const hsize_t block = out_chunk_rows * std::clamp<hsize_t>(options.block_bytes / chunk_set, 1, 64);
+    std::vector<std::vector<unsigned char>> rows(by_index.size());
+    for (hsize_t j0 = 0; j0 < shard_rows; j0 += block) {
+      if (read_raw_block(by_index, j0, block, out_rows, run_id_at, total, options.parallel, rows))
+        write_raw_block(rows, j0, block, out_rows, dset.id, hsize_t(total), options.parallel, path);
+      else
+        write_converted(by_index, dset.id, type, hsize_t(total), j0, std::min(j0 + block, shard_rows), out_chunk_rows,
+                        path);
     }
-    Handle fspace{H5Dget_space(dset.id), H5Sclose};
-    H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &first, nullptr, &n, nullptr);
-    Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
-    herr_t rc;
-    H5E_BEGIN_TRY { rc = H5Dwrite(dset.id, type, mspace.id, fspace.id, H5P_DEFAULT, out.data()); }
-    H5E_END_TRY;
-    for (auto& p : part) reclaim(type, p);  // the strings `out` pointed to too
-    if (rc < 0) fail("cannot write " + path + " (the disk may be full)");
   }
   // Provenance: the first shard's, with the shard-specific entries replaced.
   copy_attributes(inputs[0].path, file.id, {"shard", "simd_target"});
@@ -285,7 +471,8 @@ std::string check_shard_file(const std::string& path, int index, int count, std:
   return s.spec_hash + "\t" + s.inputs_hash;
 }
 
-MergeReport merge_results(const std::vector<std::string>& paths, const std::string& output) {
+MergeReport merge_results(const std::vector<std::string>& paths, const std::string& output,
+                          const MergeOptions& options) {
   if (paths.empty()) fail("no input files");
   MergeReport report;
   std::vector<Input> inputs(paths.size());
@@ -327,13 +514,13 @@ MergeReport merge_results(const std::vector<std::string>& paths, const std::stri
   // As many rows of each shard per block as fit, up to a chunk (1024 rows):
   // whole chunks need no chunk cache; fewer keep one chunk cached.
   const hsize_t per_shard =
-      std::clamp<hsize_t>(hsize_t(block_bytes / (std::max<std::size_t>(row_size, 1) * inputs.size())), 1, 1024);
+      std::clamp<hsize_t>(hsize_t(options.block_bytes / (std::max<std::size_t>(row_size, 1) * inputs.size())), 1, 1024);
   const std::size_t cache = per_shard < 1024 ? 1024 * row_size + 4096 : 0;
   for (std::size_t f = 0; f < inputs.size(); ++f) {
     open_input(inputs[f], cache);
     if (f > 0 && H5Tequal(inputs[f].ftype->id, inputs[0].ftype->id) <= 0)
       fail(paths[f] + " has other columns than " + paths[0] + " (written by another engine version)");
-    check_run_ids(inputs[f], report.runs_total);
+    check_row_count(inputs[f], report.runs_total);
     report.rows += std::int64_t(inputs[f].rows);
   }
   // Missing runs: the rest of each shard (none of an absent shard).
@@ -349,13 +536,18 @@ MergeReport merge_results(const std::vector<std::string>& paths, const std::stri
   }
   std::sort(report.first_missing.begin(), report.first_missing.end());
   if (report.first_missing.size() > 10) report.first_missing.resize(10);
-  if (!report.ok()) return report;
+  // A merge that writes checks the run_ids of each block it copies (one pass
+  // over the rows); one that does not, or of rows it cannot read so, here.
+  if (!report.ok() || int64_run_id_offset(inputs[0].native->id) == std::string::npos) {
+    for (const Input& in : inputs) check_all_run_ids(in, report.runs_total);
+    if (!report.ok()) return report;
+  }
 
   const std::string temp = merge_temp_path(output);
   const fs::path parent = fs::path(output).parent_path();
   if (!parent.empty()) fs::create_directories(parent);
   try {
-    write_merged(inputs, temp, report.runs_total, per_shard);
+    write_merged(inputs, temp, report.runs_total, per_shard, options);
   } catch (...) {
     std::error_code ec;
     fs::remove(temp, ec);

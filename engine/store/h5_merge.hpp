@@ -4,12 +4,26 @@
 // each is intact (shard K of N holds run_ids K, K+N, ... in order: a row
 // with any other run_id, one outside the spec's range included, names the
 // shard as damaged) and that no run is missing. Memory is bounded by the
-// shard count, not the run count: rows are read and written in blocks.
+// shard count, not the run count: rows are read and written in blocks,
+// whole chunks copied as the files store them (unfiltered and filtered again
+// on many threads) wherever no variable-length text is in them.
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "engine/store/h5_store.hpp"
+
 namespace chaosweep {
+
+struct MergeOptions {
+  // Where the chunks are unfiltered and filtered again (e.g. a
+  // ThreadBatchEvaluator's threads); none: this thread.
+  ParallelFor parallel;
+  // Rows read and written at once, in bytes: a block takes as many rows of
+  // every shard as fit (at least a chunk each where rows are copied as the
+  // files store them, at least one each where they are converted).
+  std::size_t block_bytes = std::size_t(64) << 20;
+};
 
 struct MergeReport {
   std::int64_t runs_total = 0, rows = 0;
@@ -28,7 +42,8 @@ std::string merge_temp_path(const std::string& output);
 // Checks `inputs`; when every run is there, writes `output` (via
 // merge_temp_path, renamed at the end). Throws std::runtime_error when the
 // inputs are not intact shards of one sweep. The caller holds OUT's lock.
-MergeReport merge_results(const std::vector<std::string>& inputs, const std::string& output);
+MergeReport merge_results(const std::vector<std::string>& inputs, const std::string& output,
+                          const MergeOptions& options = {});
 
 // Throws std::runtime_error naming `path` and what is wrong unless its
 // attributes and columns make it shard `index` of `count` of a

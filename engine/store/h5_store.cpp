@@ -13,6 +13,7 @@
 
 #include "engine/store/disk_room.hpp"
 #include "engine/store/h5_detail.hpp"
+#include "engine/store/h5_file_rows.hpp"
 #include "engine/store/rollback_driver.hpp"
 
 namespace chaosweep {
@@ -101,25 +102,11 @@ void H5RunWriter::learn_file_layout(hid_t dset) {
   RowLayout& l = layout_;
   l.file_row_size = 0;
   l.file_offsets.assign(cols.size(), 0);
+  // Only the filters and chunks this writer sets (shuffle, then deflate).
+  const FileRows f = file_rows_of(dset);
+  if (f.row_size == 0 || f.deflate_level < 0 || f.chunk_rows != chunk_rows) return;
   Handle ftype{H5Dget_type(dset), H5Tclose};
-  Handle dcpl{H5Dget_create_plist(dset), H5Pclose};
-  // Only the filters this writer sets (shuffle, then deflate at level 4).
-  unsigned flags = 0, level = 0;
-  std::size_t nvalues = 1;
-  if (H5Pget_nfilters(dcpl.id) != 2 ||
-      H5Pget_filter2(dcpl.id, 0, &flags, nullptr, nullptr, 0, nullptr, nullptr) != H5Z_FILTER_SHUFFLE ||
-      H5Pget_filter2(dcpl.id, 1, &flags, &nvalues, &level, 0, nullptr, nullptr) != H5Z_FILTER_DEFLATE || nvalues < 1)
-    return;
-  hsize_t chunk = 0;
-  if (H5Pget_chunk(dcpl.id, 1, &chunk) != 1 || chunk != chunk_rows) return;
-  // H5Dget_type gives the row type as read into memory (a variable-length
-  // string as a char*); in the file such a string is 16 bytes (a length and
-  // a global heap id of 8-byte addresses, the default), and HDF5 moves the
-  // members after it by the difference (H5T__set_loc). An empty one is 16
-  // zero bytes. tests/engine: StoreChunks pins this against HDF5's own
-  // chunks.
   if (H5Tget_nmembers(ftype.id) != int(cols.size()) || H5Tget_size(ftype.id) != l.row_size) return;
-  std::size_t shift = 0;
   for (std::size_t i = 0; i < cols.size(); ++i) {
     Handle mt{H5Tget_member_type(ftype.id, unsigned(i)), H5Tclose};
     const H5T_class_t cls = H5Tget_class(mt.id);
@@ -131,11 +118,10 @@ void H5RunWriter::learn_file_layout(hid_t dset) {
          : text == 0                         ? cls == H5T_STRING && H5Tis_variable_str(mt.id) > 0
                      : cls == H5T_STRING && H5Tis_variable_str(mt.id) <= 0 && H5Tget_size(mt.id) == text);
     if (!expected) return;
-    l.file_offsets[i] = l.offsets[i] + shift;
-    if (cols[i].type == Column::Type::text && text == 0) shift += 16 - sizeof(char*);
+    l.file_offsets[i] = f.offsets[i];
   }
-  l.deflate_level = int(level);
-  l.file_row_size = l.row_size + shift;
+  l.deflate_level = f.deflate_level;
+  l.file_row_size = f.row_size;
 }
 
 H5RunWriter::H5RunWriter(std::string path, Mode mode, const std::vector<Attribute>& attributes,

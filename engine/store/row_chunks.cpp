@@ -1,12 +1,11 @@
 #include "engine/store/row_chunks.hpp"
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
 #include "engine/rows/result_columns.hpp"
+#include "engine/store/chunk_filters.hpp"
 
 namespace chaosweep {
 
@@ -26,30 +25,6 @@ void to_file_layout(const unsigned char* mem, std::size_t n, const RowLayout& l,
       std::memcpy(dst + l.file_offsets[i], src + l.offsets[i], size);
     }
   }
-}
-
-// HDF5's shuffle filter: byte j of element i goes to j * n + i.
-std::vector<unsigned char> shuffled(const std::vector<unsigned char>& in, std::size_t element) {
-  const std::size_t n = in.size() / element;
-  std::vector<unsigned char> out(in.size());
-  // In blocks of rows, so both the reads and the writes stay in cache.
-  constexpr std::size_t block = 64;
-  for (std::size_t i0 = 0; i0 < n; i0 += block) {
-    const std::size_t i1 = std::min(n, i0 + block);
-    for (std::size_t j = 0; j < element; ++j)
-      for (std::size_t i = i0; i < i1; ++i) out[j * n + i] = in[i * element + j];
-  }
-  return out;
-}
-
-// HDF5's deflate filter: compress2 at the dataset's level (zlib format).
-std::vector<unsigned char> deflated(const std::vector<unsigned char>& in, int level) {
-  uLongf size = compressBound(uLong(in.size()));
-  std::vector<unsigned char> out(size);
-  if (compress2(out.data(), &size, in.data(), uLong(in.size()), level) != Z_OK)
-    throw std::runtime_error("zlib: cannot compress a chunk of rows");
-  out.resize(size);
-  return out;
 }
 
 }  // namespace

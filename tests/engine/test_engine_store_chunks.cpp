@@ -1,14 +1,18 @@
 // The writer's own chunks (row_chunks.hpp: whole chunks encoded, shuffled
-// and deflated off the HDF5 library, on many threads) must be the very bytes
+// and deflated off the HDF5 library, on many threads) and merge's (shards'
+// chunks unfiltered, interleaved and filtered again) must be the very bytes
 // HDF5's write path makes, and read back as the rows given.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include "engine/run/thread_batch_evaluator.hpp"
+#include "engine/store/chunk_filters.hpp"
+#include "engine/store/h5_merge.hpp"
 #include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
 
@@ -82,6 +86,44 @@ void write(const std::string& path, const std::vector<RunRow>& rows, std::size_t
   w.finish();
 }
 
+// Whether chunk c of 1024 rows (of `n`) holds a row with a message.
+bool chunk_has_message(std::size_t c, std::size_t n, std::size_t message_every) {
+  return message_every &&
+         (c * 1024 + message_every - 1) / message_every * message_every < std::min<std::size_t>(n, (c + 1) * 1024);
+}
+
+// Shard k of `count` of `rows` (run_ids k, k + count, ...) as a sweep writes it.
+void write_shard(const std::string& path, const std::vector<RunRow>& rows, int k, int count) {
+  std::vector<RunRow> mine;
+  for (std::size_t j = std::size_t(k); j < rows.size(); j += std::size_t(count)) mine.push_back(rows[j]);
+  H5RunWriter w(path, H5RunWriter::Mode::create,
+                {{"spec_hash", std::string("x")},
+                 {"inputs_hash", std::string("y")},
+                 {"shard", std::to_string(k) + "/" + std::to_string(count)},
+                 {"runs_total", std::int64_t(rows.size())}},
+                {{"env", 16}, {"label", 16}});
+  w.append(mine);
+  w.finish();
+}
+
+// HDF5's shuffle by its definition (byte j of element i to j * n + i), for
+// sizes that are and are not multiples of the 8 x 8 tiles it is made of.
+TEST(StoreChunks, ShuffleIsHdf5sByteTransposeAndUnshuffleItsInverse) {
+  for (const std::size_t element : {1u, 7u, 8u, 13u, 936u})
+    for (const std::size_t n : {1u, 8u, 1000u, 1024u}) {
+      std::vector<unsigned char> in(element * n);
+      for (std::size_t b = 0; b < in.size(); ++b) in[b] = static_cast<unsigned char>(b * 131 + b / 7);
+      const std::vector<unsigned char> out = shuffled(in, element);
+      ASSERT_EQ(out.size(), in.size());
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < element; ++j)
+          ASSERT_EQ(out[j * n + i], in[i * element + j]) << element << "-byte elements, " << n << ": " << i << "," << j;
+      std::vector<unsigned char> back(in.size());
+      unshuffle(out.data(), out.size(), element, back.data());
+      EXPECT_EQ(back, in) << element << "-byte elements, " << n;
+    }
+}
+
 TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
   test::TempDir tmp;
   const ThreadBatchEvaluator two(2);
@@ -103,9 +145,7 @@ TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
     // A chunk holding a message refers to it by its place in the global
     // heap, which differs with the order of the writes: compared as rows.
     for (std::size_t c = 0; c < own.size(); ++c) {
-      const bool has_message = message_every && (c * 1024 + message_every - 1) / message_every * message_every <
-                                                    std::min<std::size_t>(5000, (c + 1) * 1024);
-      if (!has_message) {
+      if (!chunk_has_message(c, 5000, message_every)) {
         EXPECT_EQ(own[c], hdf5[c]) << "chunk " << c;
       }
     }
@@ -113,6 +153,52 @@ TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
     EXPECT_EQ(read_text_column(tmp.file("own.h5"), "message")[3000], message_every ? "run 3000 said something" : "");
   }
   EXPECT_EQ(calls.load(), 4);  // two appends per file of 4096-row pieces, twice
+}
+
+// Merge copies the shards' chunks as bytes (no type conversion) where none
+// holds variable-length text: whatever the threads and the block size, the
+// merged file is the one file of all rows a sweep writes, to the byte; a
+// block whose chunks hold a message goes through HDF5's conversion, and its
+// messages read back (a copied heap id would point into the shard's file).
+TEST(StoreChunks, MergedShardsAreTheBytesOfOneFileOfAllRows) {
+  test::TempDir tmp;
+  const ThreadBatchEvaluator two(2);
+  std::atomic<int> calls{0};
+  const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
+    ++calls;
+    two.parallel(n, body);
+  };
+  constexpr std::size_t n = 10000;  // 9 whole chunks and a partial one
+  for (std::size_t message_every : {std::size_t(0), std::size_t(2500)}) {
+    const std::vector<RunRow> rows = rows_of(n, message_every);
+    write(tmp.file("whole.h5"), rows, n, parallel);
+    std::vector<std::string> shards;
+    for (int k = 0; k < 3; ++k) {
+      shards.push_back(tmp.file("shard" + std::to_string(k) + ".h5"));
+      write_shard(shards.back(), rows, k, 3);
+    }
+    const auto whole = raw_chunks(tmp.file("whole.h5"));
+    ASSERT_EQ(whole.size(), 10u);
+    struct Case {
+      const char* name;
+      MergeOptions options;
+    };
+    std::vector<Case> cases{{"one thread", {}}, {"two threads", {parallel}}, {"a chunk per block", {parallel, 1}}};
+    for (const Case& c : cases) {
+      SCOPED_TRACE(std::string(c.name) + ", a message every " + std::to_string(message_every) + " rows");
+      const std::string out = tmp.file("merged.h5");
+      std::filesystem::remove(out);
+      const MergeReport r = merge_results(shards, out, c.options);
+      ASSERT_TRUE(r.ok()) << r.text();
+      const auto merged = raw_chunks(out);
+      ASSERT_EQ(merged.size(), whole.size());
+      for (std::size_t k = 0; k < merged.size(); ++k)
+        if (!chunk_has_message(k, n, message_every)) EXPECT_EQ(merged[k], whole[k]) << "chunk " << k;
+      expect_same_columns(out, tmp.file("whole.h5"));
+      EXPECT_EQ(read_text_column(out, "message")[5000], message_every ? "run 5000 said something" : "");
+    }
+  }
+  EXPECT_GT(calls.load(), 4);
 }
 
 }  // namespace

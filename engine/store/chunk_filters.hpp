@@ -1,0 +1,21 @@
+#pragma once
+// HDF5's shuffle and deflate filters, run off the library so whole chunks can
+// be made and unmade on many threads (the sweep's writer, merge), with the
+// very bytes HDF5's own filter pipeline makes and reads.
+#include <cstddef>
+#include <vector>
+
+namespace chaosweep {
+
+// Shuffle: byte j of element i goes to j * n + i (n = in.size() / element).
+std::vector<unsigned char> shuffled(const std::vector<unsigned char>& in, std::size_t element);
+// Its inverse: `size` bytes of `in` back into `out` (as many).
+void unshuffle(const unsigned char* in, std::size_t size, std::size_t element, unsigned char* out);
+
+// Deflate: compress2 at `level` (zlib format, as H5Z_FILTER_DEFLATE stores).
+std::vector<unsigned char> deflated(const std::vector<unsigned char>& in, int level);
+// Inflates `n` bytes of `in` into exactly `out_size` bytes of `out`; false
+// when they are not a zlib stream of that size (a damaged chunk).
+bool inflate_exactly(const unsigned char* in, std::size_t n, unsigned char* out, std::size_t out_size);
+
+}  // namespace chaosweep
