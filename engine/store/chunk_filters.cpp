@@ -27,10 +27,12 @@ void transpose8(std::uint64_t a[8]) {
     }
 }
 
-// out[c * rows + r] = in[r * cols + c]: tiles of 8 x 8 bytes as 64-bit words
-// (a byte at a time spent ~10% of a merge), 64 columns of tiles at a time so
-// the rows written stay in cache; the edges a byte at a time.
-void transpose(const unsigned char* in, std::size_t rows, std::size_t cols, unsigned char* out) {
+}  // namespace
+
+// Tiles of 8 x 8 bytes as 64-bit words (a byte at a time spent ~10% of a
+// merge), 64 columns of tiles at a time so the rows written stay in cache;
+// the edges a byte at a time.
+void transpose_bytes(const unsigned char* in, std::size_t rows, std::size_t cols, unsigned char* out) {
   const std::size_t rows8 = std::endian::native == std::endian::little ? rows / 8 * 8 : 0, cols8 = cols / 8 * 8;
   for (std::size_t c_block = 0; c_block < cols8; c_block += 64) {
     const std::size_t c_end = std::min(cols8, c_block + 64);
@@ -46,16 +48,14 @@ void transpose(const unsigned char* in, std::size_t rows, std::size_t cols, unsi
     for (std::size_t c = r < rows8 ? cols8 : 0; c < cols; ++c) out[c * rows + r] = in[r * cols + c];
 }
 
-}  // namespace
-
 std::vector<unsigned char> shuffled(const std::vector<unsigned char>& in, std::size_t element) {
   std::vector<unsigned char> out(in.size());
-  transpose(in.data(), in.size() / element, element, out.data());
+  transpose_bytes(in.data(), in.size() / element, element, out.data());
   return out;
 }
 
 void unshuffle(const unsigned char* in, std::size_t size, std::size_t element, unsigned char* out) {
-  transpose(in, element, size / element, out);
+  transpose_bytes(in, element, size / element, out);
 }
 
 std::vector<unsigned char> deflated(const std::vector<unsigned char>& in, int level) {

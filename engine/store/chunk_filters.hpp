@@ -7,6 +7,11 @@
 
 namespace chaosweep {
 
+// out[c * rows + r] = in[r * cols + c]: a rows x cols matrix of bytes
+// transposed. Unshuffling only the bytes of some members of a shuffled chunk
+// of n elements is this on the rows of those bytes (rows = their size, cols = n).
+void transpose_bytes(const unsigned char* in, std::size_t rows, std::size_t cols, unsigned char* out);
+
 // Shuffle: byte j of element i goes to j * n + i (n = in.size() / element).
 std::vector<unsigned char> shuffled(const std::vector<unsigned char>& in, std::size_t element);
 // Its inverse: `size` bytes of `in` back into `out` (as many).

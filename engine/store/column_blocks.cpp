@@ -4,7 +4,9 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "engine/store/chunk_filters.hpp"
 #include "engine/store/h5_detail.hpp"
+#include "engine/store/h5_file_rows.hpp"
 
 namespace chaosweep {
 
@@ -19,12 +21,64 @@ struct Wanted {
   std::size_t offset = 0, size = 0;
   H5T_class_t cls = H5T_NO_CLASS;
   bool is_signed = false, variable = false;
+  std::size_t file_offset = 0;  // in a chunk's row (FileRows)
   std::vector<std::int64_t> i64;
   std::vector<double> f64;  // floats, or integers as double
   std::vector<std::string> text;
 };
 
 constexpr hsize_t default_chunks_per_block = 16;
+
+// The bytes of a variable-length string in a chunk (0 when it is empty).
+constexpr std::size_t file_variable_text_size = 16;
+
+// Empties w's values for a block of `n` rows.
+void prepare(Wanted& w, std::size_t n) {
+  w.i64.clear();
+  w.f64.clear();
+  w.text.clear();
+  if (w.cls == H5T_STRING) {
+    w.text.reserve(n);
+  } else {
+    w.f64.resize(n);
+    if (w.cls == H5T_INTEGER) w.i64.resize(n);
+  }
+}
+
+// Row r's value of w from `p`, its bytes as the native type holds them (a
+// variable-length string as a char*); text is appended, so rows come in order.
+void take(Wanted& w, std::size_t r, const unsigned char* p) {
+  if (w.cls == H5T_STRING) {
+    if (w.variable) {
+      const char* s;
+      std::memcpy(&s, p, sizeof s);
+      w.text.emplace_back(s ? s : "");
+    } else {
+      const char* s = reinterpret_cast<const char*>(p);
+      w.text.emplace_back(s, strnlen(s, w.size));
+    }
+  } else if (w.cls == H5T_INTEGER) {
+    std::int64_t i;
+    double d;
+    if (w.size == 8) {
+      std::memcpy(&i, p, 8);
+      d = w.is_signed ? double(i) : double(std::uint64_t(i));
+    } else {
+      std::int32_t k;
+      std::memcpy(&k, p, 4);
+      i = w.is_signed ? std::int64_t(k) : std::int64_t(std::uint32_t(k));
+      d = double(i);
+    }
+    w.i64[r] = i;
+    w.f64[r] = d;
+  } else if (w.size == 8) {
+    std::memcpy(&w.f64[r], p, 8);
+  } else {
+    float f;
+    std::memcpy(&f, p, 4);
+    w.f64[r] = f;
+  }
+}
 
 }  // namespace
 
@@ -34,9 +88,16 @@ struct ColumnBlockReader::Impl {
   hsize_t rows = 0, block = 0, first = 0, size = 0, next_row = 0;
   std::size_t row_size = 0;
   bool any_variable = false;
+  // Chunks read raw and unfiltered here, only the members asked for
+  // unshuffled (no HDF5 type conversion), when the file's members are stored
+  // as this machine holds them.
+  bool raw = false;
+  FileRows file_rows;
+  std::vector<unsigned char> stored, chunk, member;
   std::vector<Wanted> cols;
   std::vector<std::size_t> slot;  // per column asked for, its entry of cols (a name asked twice is read once)
   std::vector<unsigned char> buf;
+  bool read_raw_block();
 };
 
 ColumnBlockReader::ColumnBlockReader(const std::string& path, std::vector<std::string> columns, std::size_t block_rows)
@@ -98,6 +159,16 @@ ColumnBlockReader::ColumnBlockReader(const std::string& path, std::vector<std::s
     Handle mt{H5Tget_member_type(native.id, unsigned(H5Tget_member_index(native.id, w.name.c_str()))), H5Tclose};
     if (H5Tinsert(m.mem.id, w.name.c_str(), w.offset, mt.id) < 0) h5::fail("cannot make a row type for " + path);
   }
+  m.file_rows = file_rows_of(m.dset.id);
+  m.raw = m.file_rows.row_size > 0 && m.file_rows.deflate_level >= 0 && m.file_rows.chunk_rows == chunk;
+  for (Wanted& w : m.cols) {
+    if (!m.raw) break;
+    const unsigned idx = unsigned(H5Tget_member_index(ftype.id, w.name.c_str()));
+    Handle ft{H5Tget_member_type(ftype.id, idx), H5Tclose}, nt{H5Tget_member_type(native.id, idx), H5Tclose};
+    m.raw = w.variable ? bool(m.file_rows.variable_text[idx]) : H5Tequal(ft.id, nt.id) > 0;
+    w.file_offset = m.file_rows.offsets[idx];
+    m.raw = m.raw && w.file_offset + (w.variable ? file_variable_text_size : w.size) <= m.file_rows.row_size;
+  }
   // A conversion buffer for a whole block, so HDF5 converts it in one go.
   m.dxpl.id = H5Pcreate(H5P_DATASET_XFER);
   const std::size_t file_row = H5Tget_size(ftype.id);
@@ -141,6 +212,47 @@ const std::vector<std::string>& ColumnBlockReader::text(std::size_t c) const {
   return w.text;
 }
 
+// The current block from its chunks as stored: inflated, then of each member
+// asked for only its bytes unshuffled. False (the block then read through
+// HDF5, which names a damaged file) when a chunk is not as expected or holds
+// a variable-length string that is not empty (its text is in the heap).
+bool ColumnBlockReader::Impl::read_raw_block() {
+  Impl& m = *this;
+  const hsize_t cr = m.file_rows.chunk_rows;
+  const std::size_t chunk_bytes = std::size_t(cr) * m.file_rows.row_size;
+  for (Wanted& w : m.cols) prepare(w, std::size_t(m.size));
+  m.chunk.resize(chunk_bytes);
+  for (hsize_t c = m.first; c < m.first + m.size; c += cr) {
+    hsize_t stored = 0;
+    std::uint32_t mask = 0;
+    if (H5Dget_chunk_storage_size(m.dset.id, &c, &stored) < 0 || stored == 0) return false;
+    m.stored.resize(std::size_t(stored));
+    herr_t rc;
+    H5E_BEGIN_TRY { rc = H5Dread_chunk(m.dset.id, H5P_DEFAULT, &c, &mask, m.stored.data()); }
+    H5E_END_TRY;
+    if (rc < 0 || mask != 0 || !inflate_exactly(m.stored.data(), m.stored.size(), m.chunk.data(), chunk_bytes))
+      return false;
+    const std::size_t at = std::size_t(c - m.first), valid = std::size_t(std::min(cr, m.first + m.size - c));
+    for (Wanted& w : m.cols) {
+      const std::size_t size = w.variable ? file_variable_text_size : w.size;
+      m.member.resize(std::size_t(cr) * size);
+      transpose_bytes(m.chunk.data() + w.file_offset * std::size_t(cr), size, std::size_t(cr), m.member.data());
+      if (w.cls == H5T_FLOAT && w.size == 8) {
+        std::memcpy(w.f64.data() + at, m.member.data(), valid * 8);
+      } else if (w.variable) {
+        for (std::size_t r = 0; r < valid; ++r) {
+          const unsigned char* p = m.member.data() + r * size;
+          if (std::any_of(p, p + size, [](unsigned char b) { return b != 0; })) return false;
+          w.text.emplace_back();
+        }
+      } else {
+        for (std::size_t r = 0; r < valid; ++r) take(w, at + r, m.member.data() + r * size);
+      }
+    }
+  }
+  return true;
+}
+
 bool ColumnBlockReader::next() {
   Impl& m = *impl_;
   if (m.next_row >= m.rows) {
@@ -152,6 +264,7 @@ bool ColumnBlockReader::next() {
   m.size = std::min(m.block, m.rows - m.first);
   m.next_row += m.size;
   const std::size_t n = std::size_t(m.size);
+  if (m.raw && !m.cols.empty() && m.read_raw_block()) return true;
   m.buf.assign(n * m.row_size, 0);
   H5Sselect_hyperslab(m.fspace.id, H5S_SELECT_SET, &m.first, nullptr, &m.size, nullptr);
   Handle mspace{H5Screate_simple(1, &m.size, nullptr), H5Sclose};
@@ -164,54 +277,8 @@ bool ColumnBlockReader::next() {
     input_fail("cannot read /runs of " + m.path + " (rows " + std::to_string(m.first) + "..): the file is damaged");
   const unsigned char* base = m.buf.data();
   for (Wanted& w : m.cols) {
-    w.i64.clear();
-    w.f64.clear();
-    w.text.clear();
-    if (w.cls == H5T_STRING) {
-      w.text.reserve(n);
-      for (std::size_t r = 0; r < n; ++r) {
-        const unsigned char* p = base + r * m.row_size + w.offset;
-        if (w.variable) {
-          const char* s;
-          std::memcpy(&s, p, sizeof s);
-          w.text.emplace_back(s ? s : "");
-        } else {
-          const char* s = reinterpret_cast<const char*>(p);
-          w.text.emplace_back(s, strnlen(s, w.size));
-        }
-      }
-    } else if (w.cls == H5T_INTEGER) {
-      w.i64.resize(n);
-      w.f64.resize(n);
-      for (std::size_t r = 0; r < n; ++r) {
-        const unsigned char* p = base + r * m.row_size + w.offset;
-        std::int64_t i;
-        double d;
-        if (w.size == 8) {
-          std::memcpy(&i, p, 8);
-          d = w.is_signed ? double(i) : double(std::uint64_t(i));
-        } else {
-          std::int32_t k;
-          std::memcpy(&k, p, 4);
-          i = w.is_signed ? std::int64_t(k) : std::int64_t(std::uint32_t(k));
-          d = double(i);
-        }
-        w.i64[r] = i;
-        w.f64[r] = d;
-      }
-    } else {
-      w.f64.resize(n);
-      for (std::size_t r = 0; r < n; ++r) {
-        const unsigned char* p = base + r * m.row_size + w.offset;
-        if (w.size == 8) {
-          std::memcpy(&w.f64[r], p, 8);
-        } else {
-          float f;
-          std::memcpy(&f, p, 4);
-          w.f64[r] = f;
-        }
-      }
-    }
+    prepare(w, n);
+    for (std::size_t r = 0; r < n; ++r) take(w, r, base + r * m.row_size + w.offset);
   }
   if (m.any_variable) H5Dvlen_reclaim(m.mem.id, mspace.id, H5P_DEFAULT, m.buf.data());
   return true;
