@@ -228,6 +228,19 @@ void write_converted(const std::vector<const Input*>& by_index, hid_t dset, hid_
   const std::size_t rs = H5Tget_size(type);
   const std::size_t run_id_at = int64_run_id_offset(type);  // npos: checked before
   std::vector<std::vector<unsigned char>> part(by_index.size());
+  // The strings HDF5 allocated for the rows read, freed also when a check
+  // below throws (a damaged shard) or the write fails.
+  struct Reclaim {
+    hid_t type;
+    std::vector<std::vector<unsigned char>>& part;
+    void operator()() {
+      for (auto& p : part) {
+        reclaim(type, p);
+        p.clear();
+      }
+    }
+    ~Reclaim() { (*this)(); }
+  } reclaim_parts{type, part};
   std::vector<unsigned char> out;
   for (hsize_t j = j0; j < j1; j += step) {
     const hsize_t first = j * count;
@@ -249,7 +262,7 @@ void write_converted(const std::vector<const Input*>& by_index, hid_t dset, hid_
     herr_t rc;
     H5E_BEGIN_TRY { rc = H5Dwrite(dset, type, mspace.id, fspace.id, H5P_DEFAULT, out.data()); }
     H5E_END_TRY;
-    for (auto& p : part) reclaim(type, p);  // the strings `out` pointed to too
+    reclaim_parts();  // the strings `out` pointed to too
     if (rc < 0) fail("cannot write " + path + " (the disk may be full)");
   }
 }
