@@ -67,6 +67,48 @@ std::vector<unsigned char> deflated(const std::vector<unsigned char>& in, int le
   return out;
 }
 
+namespace {
+
+// A deflate stream reset for each chunk instead of set up anew.
+struct Deflater {
+  z_stream z{};
+  int level = -1;  // none set up yet
+  ~Deflater() {
+    if (level >= 0) deflateEnd(&z);
+  }
+  z_stream& reset(int want) {
+    if (level == want) {
+      if (deflateReset(&z) != Z_OK) throw std::runtime_error("zlib: cannot reset a deflate stream");
+      return z;
+    }
+    if (level >= 0) deflateEnd(&z);
+    level = -1;
+    z = z_stream{};
+    if (deflateInit(&z, want) != Z_OK) throw std::runtime_error("zlib: cannot set up a deflate stream");
+    level = want;
+    return z;
+  }
+};
+
+}  // namespace
+
+std::vector<unsigned char> shuffled_and_deflated(const unsigned char* in, std::size_t size, std::size_t element,
+                                                 int level) {
+  thread_local std::vector<unsigned char> shuffled_bytes, packed;
+  thread_local Deflater deflater;
+  shuffled_bytes.resize(size);
+  transpose_bytes(in, size / element, element, shuffled_bytes.data());
+  z_stream& z = deflater.reset(level);
+  if (size > std::numeric_limits<uInt>::max()) throw std::runtime_error("zlib: a chunk of rows is too large");
+  packed.resize(deflateBound(&z, uLong(size)));
+  z.next_in = shuffled_bytes.data();
+  z.avail_in = uInt(size);
+  z.next_out = packed.data();
+  z.avail_out = uInt(packed.size());
+  if (deflate(&z, Z_FINISH) != Z_STREAM_END) throw std::runtime_error("zlib: cannot compress a chunk of rows");
+  return {packed.begin(), packed.begin() + std::ptrdiff_t(z.total_out)};
+}
+
 bool inflate_exactly(const unsigned char* in, std::size_t n, unsigned char* out, std::size_t out_size) {
   if (n > std::numeric_limits<uLong>::max() || out_size > std::numeric_limits<uLongf>::max()) return false;
   uLongf size = uLongf(out_size);

@@ -19,6 +19,13 @@ void unshuffle(const unsigned char* in, std::size_t size, std::size_t element, u
 
 // Deflate: compress2 at `level` (zlib format, as H5Z_FILTER_DEFLATE stores).
 std::vector<unsigned char> deflated(const std::vector<unsigned char>& in, int level);
+// Both filters on one chunk of `size` bytes of elements of `element` bytes
+// (the bytes of deflated(shuffled(...))), with a scratch buffer and a zlib
+// stream kept per thread: a fresh chunk-sized buffer and zlib's 256 KB of
+// state per chunk were page faults, taken under the process's memory lock,
+// that held the sweep's threads up one another.
+std::vector<unsigned char> shuffled_and_deflated(const unsigned char* in, std::size_t size, std::size_t element,
+                                                 int level);
 // Inflates `n` bytes of `in` into exactly `out_size` bytes of `out`; false
 // when they are not a zlib stream of that size (a damaged chunk).
 bool inflate_exactly(const unsigned char* in, std::size_t n, unsigned char* out, std::size_t out_size);

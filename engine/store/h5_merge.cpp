@@ -360,7 +360,7 @@ void write_raw_block(const std::vector<std::vector<unsigned char>>& rows, hsize_
       std::memcpy(chunk.data() + std::size_t(r - r0) * f.row_size, rows[k].data() + std::size_t(j) * f.row_size,
                   f.row_size);
     }
-    stored[o] = deflated(shuffled(chunk, f.row_size), out_deflate_level);
+    stored[o] = shuffled_and_deflated(chunk.data(), chunk.size(), f.row_size, out_deflate_level);
   });
   for (std::size_t o = 0; o < chunks; ++o) {
     const hsize_t at = first + hsize_t(o) * out_chunk_rows;

@@ -245,32 +245,50 @@ void H5RunWriter::set_attributes(const std::vector<Attribute>& attributes) {
 
 void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& parallel) {
   if (rows.empty()) return;
-  // Pieces end at the file's chunk boundaries, so each whole chunk is one.
+  // Pieces end at the file's chunk boundaries, so each whole chunk is one;
+  // their rows are encoded in blocks of `block` rows.
+  constexpr std::size_t block = 256;
   const std::size_t n = rows.size();
-  std::vector<EncodedPiece> pieces;
+  struct Piece {
+    std::size_t first, count, parts_end;  // its blocks: parts[previous piece's parts_end, parts_end)
+    std::vector<unsigned char> chunk;     // the filtered chunk when the piece is one (else empty)
+  };
+  std::vector<Piece> pieces;
+  std::vector<EncodedRows> parts;
   for (std::size_t r = 0; r < n;) {
     const std::size_t to_boundary = chunk_rows - (rows_ + r) % chunk_rows;
     const std::size_t count = std::min(to_boundary, n - r);
-    pieces.emplace_back();
-    pieces.back().first = r;
-    pieces.back().count = count;
+    for (std::size_t b = r; b < r + count; b += block) {
+      parts.emplace_back();
+      parts.back().first = b;
+      parts.back().count = std::min(block, r + count - b);
+    }
+    pieces.push_back({r, count, parts.size(), {}});
     r += count;
   }
-  // Kept between appends and zeroed piece by piece: a fresh zeroed buffer
+  // Kept between appends and zeroed block by block: a fresh zeroed buffer
   // per batch cost the sweep's serial thread page faults and a memset.
   if (buf_.size() < n * layout_.row_size) buf_.resize(n * layout_.row_size);
   unsigned char* const buf = buf_.data();
-  auto encode = [&](std::size_t k) {
-    EncodedPiece& p = pieces[k];
-    encode_piece(rows, layout_, p.count == chunk_rows, partial_, buf, p);
+  auto run = [&](std::size_t count, const std::function<void(std::size_t)>& body) {
+    if (parallel) {
+      parallel(count, body);
+    } else {
+      for (std::size_t k = 0; k < count; ++k) body(k);
+    }
   };
-  if (parallel) {
-    parallel(pieces.size(), encode);
-  } else {
-    for (std::size_t k = 0; k < pieces.size(); ++k) encode(k);
-  }
+  run(parts.size(), [&](std::size_t k) { encode_rows(rows, layout_, partial_, buf, parts[k]); });
+  // A string in the global heap has an address only HDF5 can give: a piece
+  // holding one goes through H5Dwrite.
+  run(pieces.size(), [&](std::size_t k) {
+    Piece& p = pieces[k];
+    if (p.count != chunk_rows || layout_.file_row_size == 0) return;
+    for (std::size_t j = k ? pieces[k - 1].parts_end : 0; j < p.parts_end; ++j)
+      if (!parts[j].texts.empty()) return;
+    p.chunk = file_chunk(layout_, buf, p.first, p.count);
+  });
   std::size_t text_bytes = 0;
-  for (const EncodedPiece& p : pieces) text_bytes += p.text_bytes;
+  for (const EncodedRows& p : parts) text_bytes += p.text_bytes;
   // Bound on what the write adds: the rows uncompressed and their text, the
   // last chunk rewritten elsewhere (compressed chunks that grow move) and its
   // old bytes in the journal, and metadata.
@@ -279,7 +297,7 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
   session("write rows to", [&] {
     if (H5Dset_extent(dset_, &total) < 0) h5::fail("cannot extend /runs");
     Handle fspace{H5Dget_space(dset_), H5Sclose};
-    for (const EncodedPiece& p : pieces) {
+    for (const Piece& p : pieces) {
       const hsize_t start = rows_ + p.first, count = p.count;
       herr_t rc;
       if (!p.chunk.empty()) {

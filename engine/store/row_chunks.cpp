@@ -29,12 +29,11 @@ void to_file_layout(const unsigned char* mem, std::size_t n, const RowLayout& l,
 
 }  // namespace
 
-void encode_piece(const std::vector<RunRow>& rows, const RowLayout& layout, bool make_chunk, const std::string& file,
-                  unsigned char* buf, EncodedPiece& piece) {
+void encode_rows(const std::vector<RunRow>& rows, const RowLayout& layout, const std::string& file, unsigned char* buf,
+                 EncodedRows& part) {
   const auto& cols = result_columns();
-  bool variable_text = false;
-  std::memset(buf + piece.first * layout.row_size, 0, piece.count * layout.row_size);
-  for (std::size_t r = piece.first; r < piece.first + piece.count; ++r) {
+  std::memset(buf + part.first * layout.row_size, 0, part.count * layout.row_size);
+  for (std::size_t r = part.first; r < part.first + part.count; ++r) {
     unsigned char* base = buf + r * layout.row_size;
     for (std::size_t i = 0; i < cols.size(); ++i) {
       CellValue v = cols[i].get(rows[r]);
@@ -48,11 +47,10 @@ void encode_piece(const std::vector<RunRow>& rows, const RowLayout& layout, bool
         // row's reference is zeros, which compress away.
         std::string& text = std::get<std::string>(v);
         if (text.empty()) continue;
-        variable_text = true;
-        piece.texts.push_back(std::move(text));
-        const char* p = piece.texts.back().c_str();
+        part.texts.push_back(std::move(text));
+        const char* p = part.texts.back().c_str();
         std::memcpy(dst, &p, sizeof p);
-        piece.text_bytes += piece.texts.back().size() + 32;
+        part.text_bytes += part.texts.back().size() + 32;
       } else {
         const std::string& s = std::get<std::string>(v);
         // Widths are made to fit (the engine's words, text_widths(spec)): a
@@ -66,11 +64,14 @@ void encode_piece(const std::vector<RunRow>& rows, const RowLayout& layout, bool
       }
     }
   }
-  // A string in the global heap has an address only HDF5 can give.
-  if (!make_chunk || variable_text || layout.file_row_size == 0) return;
-  std::vector<unsigned char> raw(piece.count * layout.file_row_size, 0);
-  to_file_layout(buf + piece.first * layout.row_size, piece.count, layout, raw.data());
-  piece.chunk = deflated(shuffled(raw, layout.file_row_size), layout.deflate_level);
+}
+
+std::vector<unsigned char> file_chunk(const RowLayout& layout, const unsigned char* buf, std::size_t first,
+                                      std::size_t count) {
+  thread_local std::vector<unsigned char> raw;  // a chunk's worth, kept: no page faults per chunk
+  raw.assign(count * layout.file_row_size, 0);
+  to_file_layout(buf + first * layout.row_size, count, layout, raw.data());
+  return shuffled_and_deflated(raw.data(), raw.size(), layout.file_row_size, layout.deflate_level);
 }
 
 }  // namespace chaosweep

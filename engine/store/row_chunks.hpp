@@ -1,9 +1,9 @@
 #pragma once
-// Rows of /runs as bytes, made off the writer's critical path: each piece of
-// an append (rows up to a chunk boundary) is encoded on its own, so pieces
-// can be encoded on many threads; a piece that is a whole chunk holding no
-// variable-length text is also laid out as the file stores it, shuffled and
-// deflated like the dataset's filters would, ready for H5Dwrite_chunk.
+// Rows of /runs as bytes, made off the writer's critical path: an append's
+// rows are encoded in blocks on many threads, and each whole chunk of them
+// holding no variable-length text is laid out as the file stores it,
+// shuffled and deflated like the dataset's filters would, ready for
+// H5Dwrite_chunk.
 // Internal to the store's writer (h5_store.cpp).
 #include <cstddef>
 #include <deque>
@@ -25,19 +25,27 @@ struct RowLayout {
   int deflate_level = 4;                  // the dataset's filter (shuffle, then deflate)
 };
 
-struct EncodedPiece {
-  std::size_t first = 0, count = 0;  // rows of the append
-  std::deque<std::string> texts;     // variable-length strings buf points into, alive until written
-  std::size_t text_bytes = 0;        // their size with the global heap's per-object overhead
-  std::vector<unsigned char> chunk;  // the filtered chunk when the piece is one (else empty)
+// Rows [first, first + count) of an append, encoded into their slice of the
+// append's buffer.
+struct EncodedRows {
+  std::size_t first = 0, count = 0;
+  std::deque<std::string> texts;  // variable-length strings the buffer points into, alive until written
+  std::size_t text_bytes = 0;     // their size with the global heap's per-object overhead
 };
 
-// Encodes rows [piece.first, +count) of `rows` into their slice of `buf`
-// (memory layout, rows.size() * row_size bytes; the slice is zeroed first); with `make_chunk`
-// (a whole chunk) and no variable-length text in it, also piece.chunk.
+// Encodes rows [part.first, +count) of `rows` into their slice of `buf`
+// (memory layout, rows.size() * row_size bytes; the slice is zeroed first).
 // Throws std::logic_error naming `file` when a value is wider than its
-// fixed column. Safe to call for disjoint pieces at once.
-void encode_piece(const std::vector<RunRow>& rows, const RowLayout& layout, bool make_chunk, const std::string& file,
-                  unsigned char* buf, EncodedPiece& piece);
+// fixed column. Safe to call for disjoint parts at once: an append's rows
+// go in blocks much smaller than a chunk, so that a batch's few chunks do
+// not leave threads idle.
+void encode_rows(const std::vector<RunRow>& rows, const RowLayout& layout, const std::string& file, unsigned char* buf,
+                 EncodedRows& part);
+
+// The chunk of rows [first, first + count) of `buf` (encoded, holding no
+// variable-length text) as the file stores it: laid out, shuffled and
+// deflated. Safe to call for disjoint chunks at once.
+std::vector<unsigned char> file_chunk(const RowLayout& layout, const unsigned char* buf, std::size_t first,
+                                      std::size_t count);
 
 }  // namespace chaosweep

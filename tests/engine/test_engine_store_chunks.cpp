@@ -124,6 +124,23 @@ TEST(StoreChunks, ShuffleIsHdf5sByteTransposeAndUnshuffleItsInverse) {
     }
 }
 
+// The stream kept per thread is reset between chunks and set up again when
+// the level changes: every chunk is the bytes compress2 makes of it alone.
+TEST(StoreChunks, ShuffledAndDeflatedWithAKeptStreamIsEachChunkCompressedAlone) {
+  for (const int level : {4, 4, 1, 9, 4})
+    for (const std::size_t n : {1u, 1000u, 1024u, 3u}) {
+      const std::size_t element = 13;
+      std::vector<unsigned char> in(element * n);
+      for (std::size_t b = 0; b < in.size(); ++b) in[b] = static_cast<unsigned char>((b * level) % 251 + b / 100);
+      const auto kept = shuffled_and_deflated(in.data(), in.size(), element, level);
+      EXPECT_EQ(kept, deflated(shuffled(in, element), level)) << "level " << level << ", " << n << " elements";
+      std::vector<unsigned char> back(in.size()), unshuffled(in.size());
+      ASSERT_TRUE(inflate_exactly(kept.data(), kept.size(), back.data(), back.size()));
+      unshuffle(back.data(), back.size(), element, unshuffled.data());
+      EXPECT_EQ(unshuffled, in);
+    }
+}
+
 TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
   test::TempDir tmp;
   const ThreadBatchEvaluator two(2);
@@ -152,7 +169,7 @@ TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
     expect_same_columns(tmp.file("own.h5"), tmp.file("hdf5.h5"));
     EXPECT_EQ(read_text_column(tmp.file("own.h5"), "message")[3000], message_every ? "run 3000 said something" : "");
   }
-  EXPECT_EQ(calls.load(), 4);  // two appends per file of 4096-row pieces, twice
+  EXPECT_EQ(calls.load(), 8);  // two appends of 4096-row batches, twice, each rows then chunks
 }
 
 // Merge copies the shards' chunks as bytes (no type conversion) where none
@@ -192,8 +209,10 @@ TEST(StoreChunks, MergedShardsAreTheBytesOfOneFileOfAllRows) {
       ASSERT_TRUE(r.ok()) << r.text();
       const auto merged = raw_chunks(out);
       ASSERT_EQ(merged.size(), whole.size());
-      for (std::size_t k = 0; k < merged.size(); ++k)
-        if (!chunk_has_message(k, n, message_every)) EXPECT_EQ(merged[k], whole[k]) << "chunk " << k;
+      for (std::size_t k = 0; k < merged.size(); ++k) {
+        if (chunk_has_message(k, n, message_every)) continue;
+        EXPECT_EQ(merged[k], whole[k]) << "chunk " << k;
+      }
       expect_same_columns(out, tmp.file("whole.h5"));
       EXPECT_EQ(read_text_column(out, "message")[5000], message_every ? "run 5000 said something" : "");
     }

@@ -249,6 +249,40 @@ TEST(ChebyshevPlanner, TheClockIsThePathLengthOverVAndTheCellsEveryMovesSupercov
   }
 }
 
+// On a 40 m map a walk is hundreds of moves (the planner takes them in
+// blocks): a budget ends the run at the first move whose clock reaches it,
+// traced or not, with the same cells.
+TEST(ChebyshevPlanner, ALongWalkEndsAtTheFirstMoveAtTheBudgetTracedOrNot) {
+  const Environment env = test::square_map(40);
+  for (const double budget : {3.3, 61.7, 250.0, 1234.5}) {
+    RunParams p;
+    p.planner = Planner::chebyshev;
+    p.start_x = 1, p.start_y = 8;
+    p.sr = 0.5;
+    p.max_time = budget;
+    RecordingSink sink;
+    const RunResult res = run_planner(p, env, &sink);
+    ASSERT_EQ(res.status, Status::timeout) << res.message;
+    ASSERT_GT(sink.pts.size(), 2u);
+    EXPECT_GE(sink.pts.back().t, budget);
+    EXPECT_LT(sink.pts[sink.pts.size() - 2].t, budget);
+    EXPECT_EQ(res.t_end, sink.pts.back().t);
+    EXPECT_EQ(res.final_x, sink.pts.back().x);
+    EXPECT_EQ(res.final_y, sink.pts.back().y);
+    EXPECT_EQ(res.steps, std::int64_t(sink.pts.size()) - 1);
+    CoverageGrid traced(env, p.sr), untraced(env, p.sr);
+    RunResult a, b;
+    a.t_opt = b.t_opt = res.t_opt;
+    run_chebyshev(p, env, traced, a, &sink);
+    run_chebyshev(p, env, untraced, b, nullptr);
+    EXPECT_EQ(a.steps, b.steps);
+    EXPECT_EQ(a.t_end, b.t_end);
+    EXPECT_EQ(a.subgoals, b.subgoals);
+    for (int j = 0; j < traced.ny(); ++j)
+      for (int i = 0; i < traced.nx(); ++i) ASSERT_EQ(traced.at(i, j), untraced.at(i, j)) << i << ", " << j;
+  }
+}
+
 TEST(ChebyshevPlanner, InTheCommonModelTheRawOrbitCoversFasterThanTheFlattenedOne) {
   // A finding (docs/seed001.md): the arcsine transform evens out the
   // sub-goals, but coverage here counts the cells the path crosses, and the
