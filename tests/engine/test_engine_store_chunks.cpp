@@ -15,6 +15,7 @@
 #include "engine/store/h5_merge.hpp"
 #include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
+#include "tests/support/varied_rows.hpp"
 
 namespace chaosweep {
 namespace {
@@ -22,22 +23,18 @@ namespace {
 // Rows 0..n-1 of varied values; a message on the rows `message_every` apart
 // (none for 0): a chunk holding one takes HDF5's own write path.
 std::vector<RunRow> rows_of(std::size_t n, std::size_t message_every) {
-  std::vector<RunRow> out(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    RunRow& r = out[j];
-    r.tuple.run_id = std::int64_t(j);
-    r.tuple.env_spec = j % 3 ? "empty" : "maps/a.txt";
-    r.tuple.label = "case " + std::to_string(j % 7);
-    r.tuple.params = test::small_run(10);
-    r.tuple.params.A = 0.3 + 1e-4 * double(j);
-    r.result.status = j % 5 ? Status::ok : Status::timeout;
-    r.result.coverage_time = 100.0 + 0.5 * double(j);
-    r.result.steps = std::int64_t(j * j);
-    r.result.wall_time = 1e-3 * double(j);
-    if (message_every && j % message_every == 0) r.result.message = "run " + std::to_string(j) + " said something";
-  }
-  return out;
+  return test::varied_rows(n, {.message_every = message_every, .labels = 7});
 }
+
+// Two threads to encode or merge on, counting the calls.
+struct CountedThreads {
+  ThreadBatchEvaluator two{2};
+  std::atomic<int> calls{0};
+  ParallelFor parallel = [this](std::size_t n, const std::function<void(std::size_t)>& body) {
+    ++calls;
+    two.parallel(n, body);
+  };
+};
 
 // The stored (filtered) bytes of every chunk of /runs.
 std::vector<std::vector<unsigned char>> raw_chunks(const std::string& path) {
@@ -143,12 +140,9 @@ TEST(StoreChunks, ShuffledAndDeflatedWithAKeptStreamIsEachChunkCompressedAlone) 
 
 TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
   test::TempDir tmp;
-  const ThreadBatchEvaluator two(2);
-  std::atomic<int> calls{0};
-  const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
-    ++calls;
-    two.parallel(n, body);
-  };
+  CountedThreads threads;
+  const ParallelFor& parallel = threads.parallel;
+  const std::atomic<int>& calls = threads.calls;
   for (std::size_t message_every : {std::size_t(0), std::size_t(1500)}) {
     const std::vector<RunRow> rows = rows_of(5000, message_every);
     // Appends of 4096 rows: chunks 0-3 whole (made by the writer unless they
@@ -179,12 +173,9 @@ TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
 // messages read back (a copied heap id would point into the shard's file).
 TEST(StoreChunks, MergedShardsAreTheBytesOfOneFileOfAllRows) {
   test::TempDir tmp;
-  const ThreadBatchEvaluator two(2);
-  std::atomic<int> calls{0};
-  const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
-    ++calls;
-    two.parallel(n, body);
-  };
+  CountedThreads threads;
+  const ParallelFor& parallel = threads.parallel;
+  const std::atomic<int>& calls = threads.calls;
   constexpr std::size_t n = 10000;  // 9 whole chunks and a partial one
   for (std::size_t message_every : {std::size_t(0), std::size_t(2500)}) {
     const std::vector<RunRow> rows = rows_of(n, message_every);

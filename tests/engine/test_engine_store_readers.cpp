@@ -16,29 +16,15 @@
 #include "engine/store/h5_compare.hpp"
 #include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
+#include "tests/support/varied_rows.hpp"
 
 namespace chaosweep {
 namespace {
 
-// Rows 0..n-1 of varied values; every 7th has a message (variable-length
-// text), every 5th timed out; `shift` changes the coverage time of rows
-// whose run_id % 11 == 3, and `repeat` makes parameters recur (A from
-// run_id % repeat).
+// Rows 0..n-1 of varied values (every 7th with a message, every 5th timed
+// out); `shift` and `repeat` as test::VariedRows says.
 std::vector<RunRow> rows_of(std::size_t n, double shift = 0, std::size_t repeat = 0) {
-  std::vector<RunRow> out(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    RunRow& r = out[j];
-    r.tuple.run_id = std::int64_t(j);
-    r.tuple.env_spec = j % 3 ? "empty" : "maps/a.txt";
-    r.tuple.label = "case " + std::to_string(j % 4);
-    r.tuple.params = test::small_run(10);
-    r.tuple.params.A = 0.3 + 1e-4 * double(repeat ? j % repeat : j);
-    r.result.status = j % 5 ? Status::ok : Status::timeout;
-    r.result.coverage_time = 100.0 + 0.5 * double(j % 97) + (j % 11 == 3 ? shift : 0.0);
-    r.result.steps = std::int64_t(j * j);
-    if (j % 7 == 0) r.result.message = "run " + std::to_string(j) + " said something";
-  }
-  return out;
+  return test::varied_rows(n, {.shift = shift, .repeat = repeat});
 }
 
 std::string write(const test::TempDir& tmp, const std::string& name, const std::vector<RunRow>& rows,
