@@ -2,12 +2,14 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
 #include "engine/run/thread_batch_evaluator.hpp"
+#include "engine/store/disk_room.hpp"
 #include "engine/store/h5_merge.hpp"
 #include "engine/store/output_lock.hpp"
 #include "engine/store/rollback_driver.hpp"
@@ -83,6 +85,7 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
         cleanup_paths[2] = lock_file.c_str();
         std::signal(SIGINT, on_merge_signal);
         std::signal(SIGTERM, on_merge_signal);
+        std::signal(SIGXFSZ, SIG_IGN);  // past ulimit -f a write fails (and is cleaned up), not the process
         const ThreadBatchEvaluator evaluator(*threads);
         MergeOptions options;
         options.parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
@@ -98,6 +101,16 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
         }
         std::cout << "merged -> " << *out << "\n";
         return exit_ok;
+      } catch (const OutOfRoom& e) {
+        std::cerr << "chaosweep merge: " << e.what() << "; nothing written\n";
+        return exit_failure;
+      } catch (const MergeWriteError& e) {
+        std::cerr << "chaosweep merge: " << e.what() << "; nothing written\n";
+        // HDF5 1.10's shutdown crashes (H5F__close_cb) on a file whose close
+        // failed; the merge's files are cleaned up, so leave without it.
+        std::cout.flush();
+        std::cerr.flush();
+        std::_Exit(exit_failure);
       } catch (const std::exception& e) {
         std::cerr << "chaosweep merge: " << e.what() << "\n";
         return exit_bad_input;

@@ -15,7 +15,8 @@ struct OutOfRoom : std::runtime_error {
 
 // Throws OutOfRoom when `file` (which may not exist yet) cannot grow by
 // `bytes`: the free space of its filesystem for this user, or this process's
-// file-size limit (RLIMIT_FSIZE, `ulimit -f`).
-void check_room(const std::string& file, std::uintmax_t bytes);
+// file-size limit (RLIMIT_FSIZE, `ulimit -f`). `what` names the write in
+// the message.
+void check_room(const std::string& file, std::uintmax_t bytes, const std::string& what = "the next batch");
 
 }  // namespace chaosweep

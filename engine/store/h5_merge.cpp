@@ -14,6 +14,7 @@
 
 #include "engine/spec/shard.hpp"
 #include "engine/store/chunk_filters.hpp"
+#include "engine/store/disk_room.hpp"
 #include "engine/store/h5_detail.hpp"
 #include "engine/store/h5_file_rows.hpp"
 #include "engine/store/h5_store.hpp"
@@ -29,6 +30,9 @@ using h5::Handle;
 namespace {
 
 [[noreturn]] void fail(const std::string& what) { throw std::runtime_error(what); }
+[[noreturn]] void fail_write(const std::string& path) {
+  throw MergeWriteError("cannot write " + path + " (the disk may be full, or the file-size limit reached: ulimit -f)");
+}
 
 // A shard file's place in its sweep, from its provenance attributes.
 struct ShardOf {
@@ -263,7 +267,7 @@ void write_converted(const std::vector<const Input*>& by_index, hid_t dset, hid_
     H5E_BEGIN_TRY { rc = H5Dwrite(dset, type, mspace.id, fspace.id, H5P_DEFAULT, out.data()); }
     H5E_END_TRY;
     reclaim_parts();  // the strings `out` pointed to too
-    if (rc < 0) fail("cannot write " + path + " (the disk may be full)");
+    if (rc < 0) fail_write(path);
   }
 }
 
@@ -367,7 +371,7 @@ void write_raw_block(const std::vector<std::vector<unsigned char>>& rows, hsize_
     herr_t rc;
     H5E_BEGIN_TRY { rc = H5Dwrite_chunk(dset, H5P_DEFAULT, 0, &at, stored[o].size(), stored[o].data()); }
     H5E_END_TRY;
-    if (rc < 0) fail("cannot write " + path + " (the disk may be full)");
+    if (rc < 0) fail_write(path);
   }
 }
 
@@ -385,7 +389,13 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
   H5E_BEGIN_TRY { f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id); }
   H5E_END_TRY;
   if (f < 0) fail("cannot create " + path + ": " + rollback_open_error());
-  Handle file{f, H5Fclose};
+  // Closed quietly when a failed write unwinds (the failure is reported).
+  Handle file{f, [](hid_t id) {
+                herr_t rc;
+                H5E_BEGIN_TRY { rc = H5Fclose(id); }
+                H5E_END_TRY;
+                return rc;
+              }};
   hsize_t dims = hsize_t(total), maxdims = H5S_UNLIMITED, chunk = out_chunk_rows;
   Handle space{H5Screate_simple(1, &dims, &maxdims), H5Sclose};
   Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
@@ -439,11 +449,13 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
     write_text_attribute(file.id, "simd_target", targets);
   H5Dclose(dset.id);
   dset.id = -1;
-  const herr_t closed = H5Fclose(file.id);  // flushes: fails when the disk is full
+  herr_t closed;
+  H5E_BEGIN_TRY { closed = H5Fclose(file.id); }  // flushes: fails when the disk is full
+  H5E_END_TRY;
   file.id = -1;
   if (closed < 0) {
     roll_back(path);
-    fail("cannot write " + path + " (the disk may be full)");
+    fail_write(path);
   }
 }
 
@@ -559,6 +571,15 @@ MergeReport merge_results(const std::vector<std::string>& paths, const std::stri
   const std::string temp = merge_temp_path(output);
   const fs::path parent = fs::path(output).parent_path();
   if (!parent.empty()) fs::create_directories(parent);
+  // The merged file holds the shards' chunks, filtered alike: about the sum
+  // of their sizes. A merge that cannot fit is not begun.
+  std::uintmax_t bytes = 1u << 20;  // metadata
+  for (const Input& in : inputs) {
+    std::error_code size_ec;
+    const std::uintmax_t size = fs::file_size(in.path, size_ec);
+    if (!size_ec) bytes += size;
+  }
+  check_room(temp, bytes, "the merged file");
   try {
     write_merged(inputs, temp, report.runs_total, per_shard, options);
   } catch (...) {

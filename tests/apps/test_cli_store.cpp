@@ -248,6 +248,28 @@ TEST(CliMerge, SigtermWhileItWritesLeavesNoPartialFile) {
   EXPECT_EQ(again.exit_code, 0) << again.err;
 }
 
+// A merge that cannot fit (here the file-size limit, ulimit -f) is refused
+// before it writes, as an I/O failure (exit 3), and leaves no file behind;
+// it was killed by SIGXFSZ halfway, its temporary file, journal and lock
+// left in place.
+TEST(CliMerge, AMergeThatCannotFitExits3AndLeavesNothing) {
+  TempDir tmp;
+  write_shard(tmp.file("s0.h5"), "h", 0, 2, 20000);
+  write_shard(tmp.file("s1.h5"), "h", 1, 2, 20000);
+  const std::string out = tmp.file("m.h5");
+  const std::string args = "merge -o " + out + " " + tmp.file("s0.h5") + " " + tmp.file("s1.h5");
+  const auto r = run_chaosweep(args, "prlimit --fsize=100000");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_TRUE(has(r.err, "file-size limit (ulimit -f: 100000 bytes")) << r.err;
+  EXPECT_TRUE(has(r.err, "the merged file needs up to")) << r.err;
+  EXPECT_TRUE(has(r.err, "nothing written")) << r.err;
+  for (const char* left : {"", ".merging", ".merging.journal", ".lock"})
+    EXPECT_FALSE(fs::exists(out + left)) << out + left;
+  const auto again = run_chaosweep(args);
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(count_rows(out), 20000);
+}
+
 TEST(CliMerge, ARunIdOutsideTheSpecNamesTheDamagedShardInLittleTimeAndMemory) {
   TempDir tmp;
   write_shard(tmp.file("s0.h5"), "h", 0, 2, 280);
