@@ -2,7 +2,6 @@
 #include <unistd.h>
 
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
@@ -106,11 +105,7 @@ void add_merge_command(CLI::App& app, std::function<int()>& action) {
         return exit_failure;
       } catch (const MergeWriteError& e) {
         std::cerr << "chaosweep merge: " << e.what() << "; nothing written\n";
-        // HDF5 1.10's shutdown crashes (H5F__close_cb) on a file whose close
-        // failed; the merge's files are cleaned up, so leave without it.
-        std::cout.flush();
-        std::cerr.flush();
-        std::_Exit(exit_failure);
+        return exit_failure;
       } catch (const std::exception& e) {
         std::cerr << "chaosweep merge: " << e.what() << "\n";
         return exit_bad_input;

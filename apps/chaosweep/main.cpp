@@ -5,10 +5,12 @@
 #include "apps/chaosweep/cli_common.hpp"
 #include "apps/chaosweep/cli_subcommands.hpp"
 #include "engine/run/simd_choice.hpp"
+#include "engine/store/h5_library.hpp"
 #include "engine/store/version.hpp"
 
 int main(int argc, char** argv) {
   using namespace chaosweep;
+  skip_hdf5_exit_handler();
   CLI::App app{"chaosweep: high-throughput sweeps of chaotic robot coverage planners"};
   app.require_subcommand(0, 1);
   bool version = false;

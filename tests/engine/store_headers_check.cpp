@@ -5,6 +5,7 @@
 #include "engine/store/column_blocks.hpp"
 #include "engine/store/disk_room.hpp"
 #include "engine/store/h5_compare.hpp"
+#include "engine/store/h5_library.hpp"
 #include "engine/store/h5_merge.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/input_identity.hpp"
