@@ -13,6 +13,8 @@ namespace chaosweep {
 void transpose_bytes(const unsigned char* in, std::size_t rows, std::size_t cols, unsigned char* out);
 
 // Shuffle: byte j of element i goes to j * n + i (n = in.size() / element).
+// With deflated(), the filters by their definitions: what the tests hold
+// shuffled_and_deflated() to.
 std::vector<unsigned char> shuffled(const std::vector<unsigned char>& in, std::size_t element);
 // Its inverse: `size` bytes of `in` back into `out` (as many).
 void unshuffle(const unsigned char* in, std::size_t size, std::size_t element, unsigned char* out);

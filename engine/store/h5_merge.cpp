@@ -30,8 +30,17 @@ using h5::Handle;
 namespace {
 
 [[noreturn]] void fail(const std::string& what) { throw std::runtime_error(what); }
+// H5Fclose without HDF5's error dump: its failure (a full disk) is reported
+// as the merge's own.
+herr_t close_quietly(hid_t file) {
+  herr_t rc;
+  H5E_BEGIN_TRY { rc = H5Fclose(file); }
+  H5E_END_TRY;
+  return rc;
+}
+
 [[noreturn]] void fail_write(const std::string& path) {
-  throw MergeWriteError("cannot write " + path + " (the disk may be full, or the file-size limit reached: ulimit -f)");
+  throw OutOfRoom("cannot write " + path + " (the disk may be full, or the file-size limit reached: ulimit -f)");
 }
 
 // A shard file's place in its sweep, from its provenance attributes.
@@ -271,14 +280,6 @@ void write_converted(const std::vector<const Input*>& by_index, hid_t dset, hid_
   }
 }
 
-void run_parallel(const ParallelFor& parallel, std::size_t n, const std::function<void(std::size_t)>& body) {
-  if (parallel) {
-    parallel(n, body);
-  } else {
-    for (std::size_t i = 0; i < n; ++i) body(i);
-  }
-}
-
 // Rows [j0, j0 + per_shard) of every shard as the files store them (`rows`,
 // per shard), their whole chunks read raw and unfiltered on many threads.
 // False when a chunk is not as expected or holds a variable-length string
@@ -389,13 +390,7 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
   H5E_BEGIN_TRY { f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id); }
   H5E_END_TRY;
   if (f < 0) fail("cannot create " + path + ": " + rollback_open_error());
-  // Closed quietly when a failed write unwinds (the failure is reported).
-  Handle file{f, [](hid_t id) {
-                herr_t rc;
-                H5E_BEGIN_TRY { rc = H5Fclose(id); }
-                H5E_END_TRY;
-                return rc;
-              }};
+  Handle file{f, close_quietly};  // also when a failed write unwinds
   hsize_t dims = hsize_t(total), maxdims = H5S_UNLIMITED, chunk = out_chunk_rows;
   Handle space{H5Screate_simple(1, &dims, &maxdims), H5Sclose};
   Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
@@ -449,9 +444,7 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
     write_text_attribute(file.id, "simd_target", targets);
   H5Dclose(dset.id);
   dset.id = -1;
-  herr_t closed;
-  H5E_BEGIN_TRY { closed = H5Fclose(file.id); }  // flushes: fails when the disk is full
-  H5E_END_TRY;
+  const herr_t closed = close_quietly(file.id);  // flushes: fails when the disk is full
   file.id = -1;
   if (closed < 0) {
     roll_back(path);

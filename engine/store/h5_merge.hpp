@@ -8,7 +8,6 @@
 // whole chunks copied as the files store them (unfiltered and filtered again
 // on many threads) wherever no variable-length text is in them.
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,16 +39,11 @@ struct MergeReport {
 // output.partial, which belongs to a sweep of `output`).
 std::string merge_temp_path(const std::string& output);
 
-// The merged file could not be written (a full disk, the file-size limit):
-// an I/O failure, not bad input. Nothing is left of it.
-struct MergeWriteError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 // Checks `inputs`; when every run is there, writes `output` (via
 // merge_temp_path, renamed at the end). Throws std::runtime_error when the
-// inputs are not intact shards of one sweep, MergeWriteError when the
-// output cannot be written. The caller holds OUT's lock.
+// inputs are not intact shards of one sweep, OutOfRoom (disk_room.hpp) when
+// the output cannot fit or a write of it fails; nothing is left of it then.
+// The caller holds OUT's lock.
 MergeReport merge_results(const std::vector<std::string>& inputs, const std::string& output,
                           const MergeOptions& options = {});
 

@@ -270,17 +270,10 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
   // per batch cost the sweep's serial thread page faults and a memset.
   if (buf_.size() < n * layout_.row_size) buf_.resize(n * layout_.row_size);
   unsigned char* const buf = buf_.data();
-  auto run = [&](std::size_t count, const std::function<void(std::size_t)>& body) {
-    if (parallel) {
-      parallel(count, body);
-    } else {
-      for (std::size_t k = 0; k < count; ++k) body(k);
-    }
-  };
-  run(parts.size(), [&](std::size_t k) { encode_rows(rows, layout_, partial_, buf, parts[k]); });
+  run_parallel(parallel, parts.size(), [&](std::size_t k) { encode_rows(rows, layout_, partial_, buf, parts[k]); });
   // A string in the global heap has an address only HDF5 can give: a piece
   // holding one goes through H5Dwrite.
-  run(pieces.size(), [&](std::size_t k) {
+  run_parallel(parallel, pieces.size(), [&](std::size_t k) {
     Piece& p = pieces[k];
     if (p.count != chunk_rows || layout_.file_row_size == 0) return;
     for (std::size_t j = k ? pieces[k - 1].parts_end : 0; j < p.parts_end; ++j)

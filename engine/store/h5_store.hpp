@@ -43,6 +43,16 @@ struct Attribute {
 // when all have finished (e.g. ThreadBatchEvaluator::parallel).
 using ParallelFor = std::function<void(std::size_t n, const std::function<void(std::size_t)>& body)>;
 
+// body(i) for every i in [0, n): through `parallel`, or in order on this
+// thread when it is empty.
+inline void run_parallel(const ParallelFor& parallel, std::size_t n, const std::function<void(std::size_t)>& body) {
+  if (parallel) {
+    parallel(n, body);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) body(i);
+  }
+}
+
 class H5RunWriter {
  public:
   enum class Mode { create, resume };
