@@ -33,6 +33,8 @@ const std::map<std::string, std::string>& measured() {
       {"final_ds_index", "final ds_index"},
       {"subgoals", "sub-goals"},
       {"reflections", "reflections (count)"},
+      {"race_round", "race round"},
+      {"config_id", "configuration"},
       {"wall_time", "wall time (s)"},
   };
   return m;

@@ -14,6 +14,7 @@
 #include "analysis/papers/chebyshev_paper.hpp"
 #include "analysis/papers/contraction_paper.hpp"
 #include "analysis/papers/table1_readings.hpp"
+#include "analysis/tune_table.hpp"
 #include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
@@ -366,6 +367,14 @@ const std::vector<TableKind>& table_kinds() {
        }},
       {"seed003", true, [](const ResultSet& rs, const TableOptions&) { return seed003_table(rs); }},
       {"readings", true, table1_readings},
+      {"tune", true,
+       [](const ResultSet& rs, const TableOptions& opt) {
+         TuneTableOptions o;
+         o.params = opt.params;
+         if (opt.grid.empty()) return tune_table(rs, nullptr, o);
+         const ResultSet grid = ResultSet::load({opt.grid});
+         return tune_table(rs, &grid, o);
+       }},
   };
   return kinds;
 }
@@ -383,6 +392,11 @@ bool table_needs_results(const std::string& name) { return table_kind(name).need
 
 TableColumns table_columns(const std::string& name, const TableOptions& opt) {
   TableColumns t;
+  if (name == "tune") {
+    t.all = false;
+    t.columns = tune_table_columns();
+    return t;
+  }
   if (name != "summary" && name != "best") return t;
   t.all = false;
   t.columns = opt.by;

@@ -15,6 +15,7 @@ struct TableOptions {
   int top = 5;                      // tuples per group (best)
   std::string paper;                // table1: CSV of the paper's values (row,paper_ct,paper_pr)
   int bins = 360;                   // seed002: orientation bins
+  std::string grid;                 // tune: a grid search's result file, its best beside the tuner's
 };
 
 // table1: per Table 1 case (the run's label, else size/SR/env/variant), the

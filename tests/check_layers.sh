@@ -22,10 +22,11 @@ layer_of() {
     engine/rows/*) rank=6 unit=engine/rows ;;
     engine/spec/*) rank=7 unit=engine/spec ;;
     engine/run/*) rank=8 unit=engine/run ;;
-    engine/store/*) rank=9 unit=engine/store ;;
-    engine/bench/*) rank=10 unit=engine/bench ;;
-    analysis/*) rank=11 unit=analysis ;;  # analysis/papers and analysis, both ways for now
-    apps/*) rank=12 unit=apps ;;
+    engine/tune/*) rank=9 unit=engine/tune ;;
+    engine/store/*) rank=10 unit=engine/store ;;
+    engine/bench/*) rank=11 unit=engine/bench ;;
+    analysis/*) rank=12 unit=analysis ;;  # analysis/papers and analysis, both ways for now
+    apps/*) rank=13 unit=apps ;;
     *) rank=-1 unit=none ;;
   esac
 }
@@ -61,7 +62,7 @@ done < <(grep -rnE '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]' kernels e
 
 if ((bad)); then
   echo "check_layers: the includes above point up or sideways (order: kernels/math < systems < core" \
-       "< planners/<each> < planners < lanes < engine/rows < engine/spec < engine/run < engine/store" \
+       "< planners/<each> < planners < lanes < engine/rows < engine/spec < engine/run < engine/tune < engine/store" \
        "< engine/bench < analysis < apps)"
   exit 1
 fi

@@ -1,4 +1,5 @@
 // `chaosweep plan SPEC.toml`: what a sweep will do, before doing it.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include "engine/run/thread_batch_evaluator.hpp"
 #include "engine/run/wall_time_estimate.hpp"
 #include "engine/spec/work_bound.hpp"
+#include "engine/tune/tune_spec.hpp"
 #include "kernels/core/param_table.hpp"
 
 namespace chaosweep {
@@ -100,6 +102,49 @@ void print_estimate(const SweepSpec& spec, EnvironmentCache& cache, SimdTarget t
             << "            lanes idle, so it errs long, the more the fewer runs; a shared machine moves it)\n";
 }
 
+// A spec with [tune]: its cases, what each races, and the most runs the
+// tune may take (every race spending its budget, then the validation runs).
+void print_tune_plan(const SweepSpec& spec, const TuneSpec& tune, const WorkBound& work, double ns, SimdTarget target) {
+  std::int64_t most = 0, most_per_case = 0;
+  for (const TuneCase& c : tune.cases) {
+    const std::int64_t n = c.budget + tune.validation_seeds;
+    most += n;
+    most_per_case = std::max(most_per_case, n);
+  }
+  std::cout << "tune '" << spec.name << "'" << (spec.description.empty() ? "" : ": " + spec.description) << "\n";
+  std::cout << "runs        at most " << most << " (" << tune.cases.size()
+            << " cases raced on their own; each its race budget + " << tune.validation_seeds
+            << " validation runs, twice that with --grid)\n";
+  std::cout << "race        " << to_string(tune.test) << " test at confidence " << format_number(tune.confidence)
+            << ", first after " << tune.first_test << " seeds, then every " << tune.each_test << "; tune.seed "
+            << tune.seed << "\n";
+  std::cout << "cases       (label: parameters searched, race budget)\n";
+  for (const TuneCase& c : tune.cases) {
+    std::string p;
+    for (std::size_t j : c.parameters) {
+      const TuneParameter& q = tune.parameters[j];
+      std::string domain;
+      if (q.real) {
+        domain = "[" + format_number(q.lo) + ", " + format_number(q.hi) + "]";
+      } else {
+        for (const SpecValue& v : q.choices) domain += (domain.empty() ? "{" : ", ") + to_text(v);
+        domain += "}";
+      }
+      p += (p.empty() ? "" : ", ") + q.key + " in " + domain;
+    }
+    std::cout << "  " << (c.run.label.empty() ? "(no label)" : c.run.label) << ": "
+              << (p.empty() ? "nothing (validated as given)" : p + ", " + std::to_string(c.budget) + " runs") << "\n";
+  }
+  // The spec's bound is over its cases, one run each: a case runs at most most_per_case times.
+  const double steps = work.steps * double(most_per_case);
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "work        at most %s%.3g integration steps (every run to its time budget; most end sooner)\n"
+                "            %.1f ns per lane-step measured here (%s kernels) -> at most %.3g core-hours\n",
+                work.sampled ? "about " : "", steps, ns, to_string(target), steps * ns * 1e-9 / 3600);
+  std::cout << buf;
+}
+
 }  // namespace
 
 void add_plan_command(CLI::App& app, std::function<int()>& action) {
@@ -123,14 +168,20 @@ void add_plan_command(CLI::App& app, std::function<int()>& action) {
       EnvironmentCache cache;
       SimdTarget target;
       WorkBound work;
+      TuneSpec tune;
       try {
         target = selected_simd_target();
         spec = load_sweep_spec(*spec_path, spec_overrides(*sets));
+        if (!spec.tune.empty()) tune = tune_spec_of(spec, *spec_path);
         preload_environments(spec, cache);  // every map, named where the spec sets it, as sweep does
         work = bound_work(spec, cache);
       } catch (const std::exception& e) {
         std::cerr << "chaosweep plan: " << e.what() << "\n";
         return exit_bad_input;
+      }
+      if (!spec.tune.empty()) {
+        print_tune_plan(spec, tune, work, calibrate(spec, cache, target), target);
+        return exit_ok;
       }
       std::cout << "sweep '" << spec.name << "'" << (spec.description.empty() ? "" : ": " + spec.description) << "\n";
       if (!sets->empty()) {

@@ -42,6 +42,9 @@ void load_input(const SweepFlags& o, SweepInput& in) {
   in.target = selected_simd_target();
   in.shard = parse_shard(o.shard);
   in.spec = load_sweep_spec(o.spec, spec_overrides(o.sets));
+  if (!in.spec.tune.empty())
+    throw SpecError(o.spec +
+                    ": has a [tune] section: its runs are the cases a tuner races, run it with chaosweep tune");
   preload_environments(in.spec, in.cache);
 }
 

@@ -30,6 +30,10 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
       "  readings Table 1 rows under readings of the paper (experiments/table1_readings.toml):\n"
       "           per reading (--by, else the reading parameters that vary) and row, CT beside\n"
       "           --paper's, and each obstacle row's ratio to its open-map row beside the paper's\n"
+      "  tune     a file of chaosweep tune: per case the configuration chosen, its median CT\n"
+      "           on the validation seeds with a bootstrap interval, the race runs spent; the\n"
+      "           grid's validated best beside it (tune --grid); --grid GRID.h5 adds the grid's\n"
+      "           best on its own seeds and its runs\n"
       "Example: chaosweep table best out/fig6/results.h5 --top 10");
   struct Opts {
     std::string name, format = "md", out, by, params;
@@ -44,12 +48,14 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
   add_force_flag(*cmd, o->force);
   cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary, readings)");
-  cmd->add_option("--params", o->params, "parameter columns, comma-separated (best)");
+  cmd->add_option("--params", o->params, "parameter columns, comma-separated (best, tune)");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--bins", o->table.bins, "seed002: orientation bins (360: the paper's 1 degree; about a minute)")
       ->check(CLI::Range(4, 3600));
   cmd->add_option("--top", o->table.top, "tuples per group (best)")->check(CLI::Range(1, 1000000));
   cmd->add_option("--paper", o->table.paper, "table1, readings: CSV with row,paper_ct,paper_pr")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--grid", o->table.grid, "tune: a grid search's results (.h5), its best per case beside")
       ->check(CLI::ExistingFile);
   cmd->callback([o, &action] {
     action = [o]() -> int {

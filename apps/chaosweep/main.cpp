@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   add_run_command(app, action);
   add_plan_command(app, action);
   add_sweep_command(app, action);
+  add_tune_command(app, action);
   add_merge_command(app, action);
   add_compare_command(app, action);
   add_slurm_commands(app, action);

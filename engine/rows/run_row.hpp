@@ -19,6 +19,10 @@ struct RunTuple {
   std::string label;               // the spec's free-text case name
   RunParams params;
   std::shared_ptr<const Environment> env;
+  // `chaosweep tune` (engine/tune): the race iteration (1, 2, ...; 0 for the
+  // validation runs) and the configuration within its case; -1 for a sweep.
+  std::int64_t race_round = -1;
+  std::int64_t config_id = -1;
 };
 
 struct RunRow {

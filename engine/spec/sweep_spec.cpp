@@ -630,9 +630,11 @@ void check_sections(const toml::table& root, const std::string& source_name) {
     const std::string key(k.str());
     if (key == "zip" || key == "case" || key == "part") {
       if (!node.is_array_of_tables()) fail(source_name, "'" + key + "' must be written as [[" + key + "]] tables");
-    } else if (key != "sweep" && key != "fixed" && key != "axes" && key != "sample" && key != "repeat") {
+    } else if (key != "sweep" && key != "fixed" && key != "axes" && key != "sample" && key != "repeat" &&
+               key != "tune") {
       fail(source_name, "unknown section '" + key +
-                            "' (allowed: [sweep], [fixed], [axes], [[zip]], [[case]], [sample], [repeat], [[part]])");
+                            "' (allowed: [sweep], [fixed], [axes], [[zip]], [[case]], [sample], [repeat], [[part]], "
+                            "[tune])");
     } else if (!node.is_table()) {
       fail(source_name, "'" + key + "' must be a table");
     }
@@ -800,6 +802,11 @@ SweepSpec parse_spec(const std::string& text, const std::string& source_name, co
     }
   }
   check_run_count(spec, source_name);
+  if (const toml::table* t = root["tune"].as_table()) {
+    std::ostringstream tune;
+    tune << *t;
+    spec.tune = tune.str();
+  }
   return spec;
 }
 

@@ -102,6 +102,9 @@ struct SweepSpec {
   // [repeat]: each run's `seed` = splitmix64 of (master seed, run_id).
   bool repeat = false;
   std::uint64_t master_seed = 0;
+  // The [tune] table as TOML text ("" when none): the spec's runs are then
+  // the cases `chaosweep tune` races (engine/tune/tune_spec.hpp), not runs to sweep.
+  std::string tune;
 
   std::int64_t size() const;
   RunSpec run(std::int64_t i) const;  // 0 <= i < size()

@@ -79,6 +79,13 @@ StoredRun load_stored_run(const std::string& path, std::int64_t run_id) {
   try {
     EnvironmentCache cache;
     out.tuple = resolve_run(run_id, run_spec_of(out.row), cache);
+    // A tune's row says which race and configuration it ran for (files of
+    // older engines have neither: a sweep's -1).
+    const auto from_row = [&](const char* name, std::int64_t& field) {
+      if (const auto it = out.row.numeric.find(name); it != out.row.numeric.end()) field = std::int64_t(it->second);
+    };
+    from_row("race_round", out.tuple.race_round);
+    from_row("config_id", out.tuple.config_id);
   } catch (const std::exception& e) {  // a missing column, an environment gone since
     throw SpecError(path + ": run_id " + std::to_string(run_id) + ": " + e.what());
   }

@@ -1,0 +1,167 @@
+// `chaosweep tune` and `table tune` (issue 23) as a user runs them: every
+// run an ordinary row (with race_round and config_id) that table, compare
+// and `run --from` read; the same file whatever --threads; kill -9 then
+// --resume losing nothing; bad [tune] input refused with nothing written; a
+// grid's best validated beside the tuner's choice.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "engine/store/h5_store.hpp"
+#include "tests/support/test_util.hpp"
+
+using namespace chaosweep;
+using chaosweep::test::has;
+using chaosweep::test::run_chaosweep;
+using chaosweep::test::TempDir;
+using chaosweep::test::write_file;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Two cases of cheap map-zoning runs (10 m maps) and one without parameters.
+const std::string spec_text =
+    "[sweep]\nname = \"tiny_tune\"\n"
+    "[fixed]\nsize = 10\nsr = 1\nic_jitter = 1e-6\nmax_time = 600\n"
+    "[[part]]\nname = \"MZ\"\nfixed = { map_zoning = 1 }\n"
+    "case = [ { label = \"open\", env = \"no_obstacles\" }, { label = \"box\", env = \"one_square\" } ]\n"
+    "[[part]]\nname = \"plain\"\ncase = [ { label = \"plain\", env = \"no_obstacles\" } ]\n"
+    "[tune]\nbudget = 80\nseed = 1\nvalidation_seeds = 6\n"
+    "[tune.parameters]\nds_index = [1, 2, 3]\nc = { min = 0.05, max = 1 }\n"
+    "[tune.part.MZ]\nparameters = [\"ds_index\", \"c\"]\n[tune.part.plain]\nparameters = []\n";
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+}  // namespace
+
+TEST(CliTune, RowsAreOrdinaryRowsTheSameAtAnyThreadCountAndTableTuneReadsThem) {
+  TempDir tmp;
+  const std::string spec = tmp.file("t.toml"), a = tmp.file("a.h5"), b = tmp.file("b.h5");
+  write_file(spec, spec_text);
+  const auto r1 = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(a) + " --threads 1");
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  EXPECT_TRUE(has(r1.out, "case open:")) << r1.out;
+  EXPECT_TRUE(has(r1.out, "case plain: no parameters")) << r1.out;
+  const auto r2 = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(b) + " --threads 2 -q");
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  const auto cmp = run_chaosweep("compare " + quoted(a) + " " + quoted(b));
+  EXPECT_EQ(cmp.exit_code, 0) << cmp.out << cmp.err;
+  EXPECT_TRUE(has(cmp.out, "0 changed")) << cmp.out;
+  // The rows: races spend at most the budget; validation on 6 fresh seeds per case.
+  const auto round = read_i64_column(a, "race_round");
+  const auto config = read_i64_column(a, "config_id");
+  const auto seed = read_f64_column(a, "seed");
+  const auto label = read_text_column(a, "label");
+  std::map<std::string, int> race, validation;
+  for (std::size_t r = 0; r < round.size(); ++r) {
+    EXPECT_GE(config[r], 1);
+    if (round[r] > 0) {
+      ++race[label[r]];
+      EXPECT_LT(seed[r], 1000);
+    } else {
+      ++validation[label[r]];
+      EXPECT_GE(seed[r], 1000000);
+    }
+  }
+  EXPECT_LE(race["open"], 80);
+  EXPECT_GE(race["open"], 40);
+  EXPECT_EQ(race.count("plain"), 0u);
+  EXPECT_EQ(validation, (std::map<std::string, int>{{"box", 6}, {"open", 6}, {"plain", 6}}));
+  EXPECT_EQ(read_attribute(a, "kind"), "tune");
+  EXPECT_EQ(read_attribute(a, "runs_total"), std::to_string(round.size()));
+  // table tune: a row per case; the others read the file as any result file.
+  const auto t = run_chaosweep("table tune " + quoted(a));
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  for (const char* c : {"| open |", "| box |", "| plain |", "validated CT", "6/6"})
+    EXPECT_TRUE(has(t.out, c)) << c << "\n" << t.out;
+  EXPECT_EQ(run_chaosweep("table summary " + quoted(a)).exit_code, 0);
+  const auto rerun = run_chaosweep("run --from " + quoted(a) + " --run-id 5");
+  EXPECT_EQ(rerun.exit_code, 0) << rerun.out << rerun.err;
+  EXPECT_TRUE(has(rerun.out, "identical")) << rerun.out;
+}
+
+TEST(CliTune, KilledMidwayAndResumedItWritesTheSameFile) {
+  TempDir tmp;
+  const std::string spec = tmp.file("t.toml"), whole = tmp.file("whole.h5"), cut = tmp.file("cut.h5");
+  write_file(spec, spec_text);
+  ASSERT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(whole) + " -q").exit_code, 0);
+  // Killed by kill -9 once the first steps' rows are in OUT.partial.
+  const auto partial = cut + ".partial";
+  const int pid = chaosweep::test::start_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " -q --threads 1");
+  for (int i = 0; i < 400 && !(fs::exists(partial) && count_rows(partial) > 0); ++i) usleep(5000);
+  kill(pid, SIGKILL);
+  chaosweep::test::wait_exit(pid);
+  ASSERT_TRUE(fs::exists(partial));
+  const std::int64_t had = count_rows(partial);
+  const auto r = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " --resume");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(had == 0 || has(r.out, std::to_string(had) + " already done")) << r.out;
+  const auto cmp = run_chaosweep("compare " + quoted(whole) + " " + quoted(cut));
+  EXPECT_EQ(cmp.exit_code, 0) << cmp.out;
+  EXPECT_TRUE(has(cmp.out, "0 changed; 0 only in A, 0 only in B")) << cmp.out;
+  EXPECT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " --resume").exit_code, 0);
+}
+
+TEST(CliTune, BadTuneInputExits2AndWritesNothing) {
+  TempDir tmp;
+  const std::string spec = tmp.file("t.toml"), out = tmp.file("o.h5");
+  std::string bad = spec_text;
+  bad.replace(bad.find("max = 1 }"), 9, "max = 1000000 }");
+  write_file(spec, bad);
+  const auto r = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(out));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "tune.parameters.c.max")) << r.err;
+  EXPECT_TRUE(has(r.err, "1000")) << r.err;  // the allowed range
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(out + ".partial"));
+  // A spec with [tune] is not swept by mistake.
+  write_file(spec, spec_text);
+  const auto s = run_chaosweep("sweep " + quoted(spec) + " -o " + quoted(out));
+  EXPECT_EQ(s.exit_code, 2);
+  EXPECT_TRUE(has(s.err, "chaosweep tune")) << s.err;
+  EXPECT_FALSE(fs::exists(out + ".partial"));
+  const auto small = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(out) + " --budget 4");
+  EXPECT_EQ(small.exit_code, 2);
+  EXPECT_TRUE(has(small.err, "--budget: must be at least 10")) << small.err;
+}
+
+TEST(CliTune, AGridsBestIsValidatedBesideTheTunersChoice) {
+  TempDir tmp;
+  const std::string spec = tmp.file("t.toml"), grid_spec = tmp.file("g.toml"), grid = tmp.file("g.h5"),
+                    out = tmp.file("o.h5");
+  write_file(spec, spec_text);
+  // The grid: the same cases, a coarse c x ds_index grid on 3 seeds.
+  write_file(grid_spec,
+             "[fixed]\nsize = 10\nsr = 1\nic_jitter = 1e-6\nmax_time = 600\n"
+             "[axes]\nseed = [0, 1, 2]\n"
+             "[[part]]\nname = \"MZ\"\nfixed = { map_zoning = 1 }\n"
+             "case = [ { label = \"open\", env = \"no_obstacles\" }, { label = \"box\", env = \"one_square\" } ]\n"
+             "[part.axes]\nds_index = [1, 2, 3]\nc = [0.1, 0.5, 1]\n"
+             "[[part]]\nname = \"plain\"\ncase = [ { label = \"plain\", env = \"no_obstacles\" } ]\n");
+  ASSERT_EQ(run_chaosweep("sweep " + quoted(grid_spec) + " -o " + quoted(grid) + " -q").exit_code, 0);
+  const auto r = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(out) + " -q --grid " + quoted(grid));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto config = read_i64_column(out, "config_id");
+  const auto round = read_i64_column(out, "race_round");
+  int beside = 0;
+  for (std::size_t k = 0; k < config.size(); ++k) beside += config[k] == 0 && round[k] == 0;
+  EXPECT_EQ(beside, 12);  // 6 seeds for each of the two raced cases
+  const auto t = run_chaosweep("table tune " + quoted(out) + " --grid " + quoted(grid));
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  for (const char* c : {"grid's best, validated", "tuner <= grid", "grid runs", "cases", "% of the grid's"})
+    EXPECT_TRUE(has(t.out, c)) << c << "\n" << t.out;
+  // A grid without the case's label is named.
+  const std::string other = tmp.file("other.h5");
+  write_file(grid_spec, "[fixed]\nsize = 10\nlabel = \"x\"\nmax_time = 100\n[axes]\nds_index = [1, 2]\n");
+  ASSERT_EQ(run_chaosweep("sweep " + quoted(grid_spec) + " -o " + quoted(other) + " -q").exit_code, 0);
+  const auto bad =
+      run_chaosweep("tune " + quoted(spec) + " -o " + quoted(tmp.file("p.h5")) + " --grid " + quoted(other));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(has(bad.err, "no run labelled 'open'")) << bad.err;
+}
