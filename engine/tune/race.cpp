@@ -30,6 +30,7 @@ Race::Race(std::vector<TuneParameter> parameters, std::int64_t budget, const Tun
       n_iterations_(log_count(parameters_.size())),
       n_survivors_(log_count(parameters_.size())) {
   settings_.cases.clear();  // only the race's settings are kept
+  race_budget_ = budget_ - std::int64_t(std::floor(double(budget_) * settings_.post_selection));
   if (parameters_.empty() || budget_ <= 0) done_ = true;
 }
 
@@ -111,12 +112,16 @@ void Race::add_initial(int n) {
 
 // Children of the elites: the parent drawn with weight (elites - rank + 1);
 // a real from a normal around the parent's value, truncated to the range,
-// its spread (range / 2) shrinking by (1/n)^(1/parameters) per iteration;
+// its spread (range / 2) shrinking by (1/N_1)^(1/parameters) per iteration;
 // a choice from the parent's probabilities moved towards its own value.
 void Race::add_children(int n) {
   const std::size_t e = elites_.size();
   const double weight_total = double(e * (e + 1)) / 2.0;
-  const double shrink = std::pow(1.0 / double(std::max(n, 1)), double(iteration_ - 1) / double(parameters_.size()));
+  // (1/N_1)^((j-1)/P), N_1 the first iteration's sample: the spread shrinks
+  // every iteration, however few configurations a late one adds.
+  int first = 0;
+  for (const Candidate& c : pool_) first += c.born == 1;
+  const double shrink = std::pow(1.0 / double(std::max(first, 2)), double(iteration_ - 1) / double(parameters_.size()));
   const double towards = std::min(0.9, double(iteration_ - 1) / double(n_iterations_));
   for (int made = 0, tries = 0; made < n && tries < 50 * n; ++tries) {
     double w = uniform() * weight_total;
@@ -175,15 +180,18 @@ std::vector<std::int64_t> Race::ranked(const std::vector<std::int64_t>& ids) con
 
 void Race::start_iteration() {
   ++iteration_;
-  const std::int64_t remaining = budget_ - spent_;
+  const std::int64_t remaining = race_budget_ - spent_;
   iteration_budget_ = remaining / std::max(1, n_iterations_ - iteration_ + 1);
   const std::int64_t per = settings_.first_test + std::min(5, iteration_);
   std::int64_t n = iteration_budget_ / per;
-  if (iteration_ == 1) n = std::max<std::int64_t>(n, std::min<std::int64_t>(2, remaining / settings_.first_test));
+  if (iteration_ == 1) {
+    // At least two configurations on first_test seeds, from the whole budget if need be.
+    n = std::max<std::int64_t>(n, std::min<std::int64_t>(2, (budget_ - spent_) / settings_.first_test));
+    iteration_budget_ = std::max(iteration_budget_, std::min(budget_ - spent_, n * settings_.first_test));
+  }
   const std::int64_t fresh = n - std::int64_t(elites_.size());
-  if (fresh <= 0 || remaining <= 0) {
-    --iteration_;  // it never raced
-    done_ = true;
+  if (fresh <= 0 || (remaining <= 0 && iteration_ > 1)) {
+    start_post_selection();
     return;
   }
   const std::size_t before = pool_.size();
@@ -193,16 +201,34 @@ void Race::start_iteration() {
   for (std::int64_t id : elites_) pool_[std::size_t(id - 1)].alive = true;
   if (new_this_iteration_ == 0 || alive().size() < 2) {  // nothing new to race (a small, finite domain)
     if (elites_.empty()) elites_ = alive();
-    --iteration_;
-    done_ = true;
+    start_post_selection();
     return;
   }
   if (exhausted_) {
     // Every point of the domain races now and none can be added later: the
     // race gets the whole budget and goes on to a single survivor.
-    iteration_budget_ = remaining;
+    iteration_budget_ = budget_ - spent_;
     n_survivors_ = 1;
   }
+  racing_ = true;
+  seeds_ = 0;
+  iteration_spent_ = 0;
+}
+
+// The elites of the last race have run few seeds each (a race spreads its
+// budget over many configurations), so the best of them is often the luckiest:
+// the budget kept back races them alone on further seeds, to one survivor.
+void Race::start_post_selection() {
+  if (post_selection_ || elites_.size() < 2 || budget_ - spent_ < std::int64_t(elites_.size())) {
+    --iteration_;  // it never raced
+    done_ = true;
+    return;
+  }
+  post_selection_ = true;
+  for (Candidate& c : pool_) c.alive = false;
+  for (std::int64_t id : elites_) pool_[std::size_t(id - 1)].alive = true;
+  iteration_budget_ = budget_ - spent_;
+  n_survivors_ = 1;
   racing_ = true;
   seeds_ = 0;
   iteration_spent_ = 0;
@@ -214,7 +240,7 @@ void Race::end_iteration() {
   for (Candidate& c : pool_) c.alive = false;
   for (std::int64_t id : elites_) pool_[std::size_t(id - 1)].alive = true;
   racing_ = false;
-  if (spent_ >= budget_) done_ = true;
+  if (spent_ >= budget_ || post_selection_) done_ = true;
 }
 
 void Race::eliminate() {
@@ -243,8 +269,11 @@ void Race::eliminate() {
       keep[p[r].second] = false;
     }
   }
+  // Elitist racing (irace's default): an elite that ran more seeds than this
+  // race has so far is not dropped on fewer seeds than it has evidence for.
   for (std::size_t k = 0; k < ids.size(); ++k)
-    if (!keep[k]) pool_[std::size_t(ids[k] - 1)].alive = false;
+    if (!keep[k] && std::int64_t(candidate(ids[k]).costs.size()) <= seeds_)
+      pool_[std::size_t(ids[k] - 1)].alive = false;
 }
 
 std::vector<RaceEvaluation> Race::next() {

@@ -6,7 +6,9 @@
 // shows worse are dropped; the best survivors are the elites, and new
 // configurations are sampled around them (reals: a truncated normal whose
 // spread shrinks each iteration; choices: probabilities moved towards the
-// elite's value) for the next race, until the budget is spent.
+// elite's value) for the next race, until the iterations' share of the
+// budget is spent; the rest (post_selection) races the last elites alone on
+// further seeds, and the survivor is the choice.
 // A step machine: next() says what to run, take() gets the costs back, so the
 // caller can batch many cases' evaluations, and the race depends on the
 // costs alone (not on how, or on how many threads, they were run).
@@ -57,6 +59,7 @@ class Race {
 
  private:
   void start_iteration();
+  void start_post_selection();
   void end_iteration();
   void eliminate();
   std::vector<std::int64_t> alive() const;
@@ -83,7 +86,10 @@ class Race {
   std::vector<RaceEvaluation> pending_;
   std::int64_t pending_seeds_ = 0;
   int new_this_iteration_ = 0;
-  bool exhausted_ = false;  // the first iteration took every point of a finite domain
+  bool exhausted_ = false;
+  bool post_selection_ = false;  // the elites' last race, on the budget kept back
+  std::int64_t race_budget_ =
+      0;  // the iterations' share of the budget  // the first iteration took every point of a finite domain
 };
 
 }  // namespace chaosweep

@@ -176,6 +176,8 @@ TuneSpec tune_spec_of(const SweepSpec& spec, const std::string& source_name, std
       t.first_test = int(number(v, at, 2, 1000, true));
     } else if (key == "each_test") {
       t.each_test = int(number(v, at, 1, 1000, true));
+    } else if (key == "post_selection") {
+      t.post_selection = number(v, at, 0, 0.9, false);
     } else if (key == "digits") {
       t.digits = int(number(v, at, 1, 15, true));
     } else if (key == "validation_seeds") {
@@ -184,8 +186,8 @@ TuneSpec tune_spec_of(const SweepSpec& spec, const std::string& source_name, std
       t.validation_first_seed = std::int64_t(number(v, at, 0, 9e15, true));
     } else {
       fail(where, "unknown key '" + key +
-                      "' (allowed: parameters, part, budget, seed, confidence, test, first_test, each_test, digits, "
-                      "validation_seeds, validation_first_seed)");
+                      "' (allowed: parameters, part, budget, seed, confidence, test, first_test, each_test, "
+                      "post_selection, digits, validation_seeds, validation_first_seed)");
     }
   }
   if (t.parameters.empty()) fail(where + ".parameters", "is missing: name the parameters to search");

@@ -37,9 +37,10 @@ struct TuneSpec {
   std::uint64_t seed = 0;  // the tuner's own draws
   double confidence = 0.95;
   RaceTest test = RaceTest::friedman;
-  int first_test = 5;  // seeds every configuration runs before its first test
-  int each_test = 1;   // seeds between tests
-  int digits = 4;      // significant digits of a sampled real value
+  int first_test = 5;           // seeds every configuration runs before its first test
+  int each_test = 1;            // seeds between tests
+  int digits = 4;               // significant digits of a sampled real value
+  double post_selection = 0.2;  // share of a case's budget kept to race its last elites on more seeds
   int validation_seeds = 32;
   std::int64_t validation_first_seed = 1000000;  // far from the race's seeds 0, 1, ...
 };

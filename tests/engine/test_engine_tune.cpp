@@ -164,11 +164,13 @@ TEST(Race, FindsTheMadeUpOptimumWithinItsBudget) {
   EXPECT_GE(r.iteration(), 2);
   // New configurations came from the elites: later ones sit nearer the optimum.
   double first = 0, last = 0;
-  int n_first = 0, n_last = 0;
+  int n_first = 0, n_last = 0, newest = 0;
+  for (const Candidate& c : r.candidates()) newest = std::max(newest, c.born);
+  EXPECT_GE(newest, 2);
   for (const Candidate& c : r.candidates()) {
     const double d = std::abs(c.values[0] - 0.3);
     if (c.born == 1) first += d, ++n_first;
-    if (c.born == r.iteration()) last += d, ++n_last;
+    if (c.born == newest) last += d, ++n_last;
   }
   ASSERT_GT(n_first, 0);
   ASSERT_GT(n_last, 0);
@@ -257,7 +259,7 @@ TEST(TuneRunner, RowsAreTheSameOnOneThreadOrTwoAndRunIdsFollowOn) {
   const Collected one = tune_rows(t, SerialBatchEvaluator());
   const Collected two = tune_rows(t, ThreadBatchEvaluator(2, best_simd_target()));
   ASSERT_EQ(one.rows.size(), two.rows.size());
-  ASSERT_GT(one.rows.size(), 100u);
+  ASSERT_GT(one.rows.size(), 80u);
   std::set<std::int64_t> validation_configs;
   for (std::size_t k = 0; k < one.rows.size(); ++k) {
     const RunRow &a = one.rows[k], &b = two.rows[k];

@@ -20,17 +20,20 @@ for ((round = 0; round < rounds; ++round)); do
   pids=() names=()
   for spec in "${specs[@]}"; do
     name=$(basename "$spec" .toml)
-    total=$(runs_of "$spec")
-    [[ $total =~ ^[0-9]+$ ]] || { echo "$name: plan printed no run count" >&2; fail=1; continue; }
-    # Shard K/N where N keeps the shard at most max_runs runs; K moves with the round.
-    count=$(( (total + max_runs - 1) / max_runs ))
-    index=$(( round % count ))
-    expect=$(( (total - index + count - 1) / count ))
     # A spec with [tune] is raced, not swept: its smallest race (first_test
     # seeds of two configurations) per case, one validation seed, runs cut at
     # 100 s; its rows are whatever the races spent, so only the exit is checked.
-    tune=0
-    grep -q '^\[tune\]' "$spec" && tune=1 expect=any
+    tune=0 index=0 count=1 expect=any
+    if grep -q '^\[tune\]' "$spec"; then
+      tune=1
+    else
+      total=$(runs_of "$spec")
+      [[ $total =~ ^[0-9]+$ ]] || { echo "$name: plan printed no run count" >&2; fail=1; continue; }
+      # Shard K/N where N keeps the shard at most max_runs runs; K moves with the round.
+      count=$(( (total + max_runs - 1) / max_runs ))
+      index=$(( round % count ))
+      expect=$(( (total - index + count - 1) / count ))
+    fi
     for ((c = 0; c < copies; ++c)); do
       out="$work/$name.$round.$c.h5"
       if ((tune)); then
