@@ -210,9 +210,7 @@ void Race::start_iteration() {
     iteration_budget_ = budget_ - spent_;
     n_survivors_ = 1;
   }
-  racing_ = true;
-  seeds_ = 0;
-  iteration_spent_ = 0;
+  begin_race();
 }
 
 // The elites of the last race have run few seeds each (a race spreads its
@@ -229,6 +227,10 @@ void Race::start_post_selection() {
   for (std::int64_t id : elites_) pool_[std::size_t(id - 1)].alive = true;
   iteration_budget_ = budget_ - spent_;
   n_survivors_ = 1;
+  begin_race();
+}
+
+void Race::begin_race() {
   racing_ = true;
   seeds_ = 0;
   iteration_spent_ = 0;

@@ -60,6 +60,7 @@ class Race {
  private:
   void start_iteration();
   void start_post_selection();
+  void begin_race();  // from seed 0, on iteration_budget_
   void end_iteration();
   void eliminate();
   std::vector<std::int64_t> alive() const;

@@ -22,6 +22,17 @@ constexpr int max_iterations = 1'000'000;
 
 // A total order (NaN after +inf, NaNs tied) so that sorting never sees an
 // invalid comparator, whatever the input.
+// One term of a continued fraction b + a / (...) by the modified Lentz
+// method (c, d its running state): the factor the value is multiplied by.
+double lentz_step(double a, double b, double& c, double& d) {
+  d = b + a * d;
+  if (std::abs(d) < tiny) d = tiny;
+  c = b + a / c;
+  if (std::abs(c) < tiny) c = tiny;
+  d = 1 / d;
+  return d * c;
+}
+
 bool before(double a, double b) { return !std::isnan(a) && (std::isnan(b) || a < b); }
 bool tied(double a, double b) { return !before(a, b) && !before(b, a); }
 
@@ -86,12 +97,7 @@ Tails incomplete_gamma(double a, double x) {
   for (int i = 1; i < max_iterations; ++i) {
     const double an = -i * (i - a);
     b += 2;
-    d = an * d + b;
-    if (std::abs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double delta = d * c;
+    const double delta = lentz_step(an, b, c, d);
     h *= delta;
     if (std::abs(delta - 1) < eps) break;
   }
@@ -108,20 +114,8 @@ double beta_continued_fraction(double a, double b, double x) {
   double h = d;
   for (int m = 1; m < max_iterations; ++m) {
     const int m2 = 2 * m;
-    double aa = m * (b - m) * x / ((qam + m2) * (a + m2));
-    d = 1 + aa * d;
-    if (std::abs(d) < tiny) d = tiny;
-    c = 1 + aa / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1 / d;
-    h *= d * c;
-    aa = -(a + m) * (qab + m) * x / ((a + m2) * (qap + m2));
-    d = 1 + aa * d;
-    if (std::abs(d) < tiny) d = tiny;
-    c = 1 + aa / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double delta = d * c;
+    h *= lentz_step(m * (b - m) * x / ((qam + m2) * (a + m2)), 1, c, d);
+    const double delta = lentz_step(-(a + m) * (qab + m) * x / ((a + m2) * (qap + m2)), 1, c, d);
     h *= delta;
     if (std::abs(delta - 1) < eps) break;
   }
@@ -153,13 +147,7 @@ double scaled_erfc(double s) {
   // erfc(s) e^(s^2) sqrt(pi) = 1 / (s + (1/2) / (s + (2/2) / (s + (3/2) / ...)))
   double c = s, d = 0, h = s;
   for (int n = 1; n < 1000; ++n) {
-    const double an = 0.5 * n;
-    d = s + an * d;
-    if (std::abs(d) < tiny) d = tiny;
-    c = s + an / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double delta = c * d;
+    const double delta = lentz_step(0.5 * n, s, c, d);
     h *= delta;
     if (std::abs(delta - 1) < eps) break;
   }
