@@ -165,3 +165,21 @@ TEST(CliTune, AGridsBestIsValidatedBesideTheTunersChoice) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_TRUE(has(bad.err, "no run labelled 'open'")) << bad.err;
 }
+
+TEST(CliTune, SigintFinishesTheRunsInFlightExits130AndResumes) {
+  TempDir tmp;
+  const std::string spec = tmp.file("t.toml"), whole = tmp.file("whole.h5"), cut = tmp.file("cut.h5");
+  write_file(spec, spec_text);
+  ASSERT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(whole) + " -q").exit_code, 0);
+  const auto partial = cut + ".partial";
+  const int pid = chaosweep::test::start_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " -q --threads 1");
+  for (int i = 0; i < 400 && !(fs::exists(partial) && count_rows(partial) > 0); ++i) usleep(5000);
+  kill(pid, SIGINT);
+  const int code = chaosweep::test::wait_exit(pid);
+  if (code == 0) GTEST_SKIP() << "the tune finished before the signal";
+  EXPECT_EQ(code, 130);
+  EXPECT_FALSE(fs::exists(cut));
+  ASSERT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " --resume -q").exit_code, 0);
+  const auto cmp = run_chaosweep("compare " + quoted(whole) + " " + quoted(cut));
+  EXPECT_TRUE(has(cmp.out, "0 changed; 0 only in A, 0 only in B")) << cmp.out;
+}
