@@ -132,6 +132,11 @@ std::vector<SpecOverride> spec_overrides(const std::vector<std::string>& sets) {
   return out;
 }
 
+ProgressMode progress_mode(const std::string& progress, bool quiet) {
+  if (progress == "never" || (quiet && progress == "auto")) return ProgressMode::never;
+  return progress == "always" ? ProgressMode::always : ProgressMode::automatic;
+}
+
 void add_force_flag(CLI::App& cmd, bool& force) {
   cmd.add_flag("--force", force, "replace output files that already exist");
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/progress.hpp"
 #include "engine/spec/spec_overrides.hpp"
 #include "engine/spec/sweep_spec.hpp"
 #include "engine/store/provenance.hpp"
@@ -49,6 +50,9 @@ std::vector<SpecOverride> spec_overrides(const std::vector<std::string>& sets);
 // Adds --force to a command that writes files: results can be hours of work,
 // so no command replaces an existing file unless asked to.
 void add_force_flag(CLI::App& cmd, bool& force);
+
+// --progress auto|always|never as the reporter's mode; -q silences "auto".
+ProgressMode progress_mode(const std::string& progress, bool quiet);
 
 // Throws OutputPathError naming `path` and `flag` (the option that gave it)
 // unless `path` can name an output file: not empty, not a directory, not

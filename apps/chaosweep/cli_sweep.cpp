@@ -48,11 +48,6 @@ void load_input(const SweepFlags& o, SweepInput& in) {
   preload_environments(in.spec, in.cache);
 }
 
-ProgressMode progress_mode(const SweepFlags& o) {
-  if (o.progress == "never" || (o.quiet && o.progress == "auto")) return ProgressMode::never;
-  return o.progress == "always" ? ProgressMode::always : ProgressMode::automatic;
-}
-
 void print_start(const SweepFlags& o, const SweepInput& in, std::int64_t shard_runs, std::int64_t skip, int threads) {
   std::cout << "sweep '" << in.spec.name << "': " << shard_runs << " runs";
   if (in.shard.count > 1)
@@ -78,7 +73,7 @@ int run_into(const SweepFlags& o, SweepInput& in, H5RunWriter& writer, std::int6
   std::int64_t written = skip;
   const auto started = std::chrono::steady_clock::now();
   {
-    ProgressReporter reporter(counters, shard_runs - skip, progress_mode(o));
+    ProgressReporter reporter(counters, shard_runs - skip, progress_mode(o.progress, o.quiet));
     const ThreadBatchEvaluator evaluator(threads, in.target);
     // Rows are encoded and compressed on the sweep's threads.
     const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {

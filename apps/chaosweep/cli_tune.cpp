@@ -147,7 +147,8 @@ int tune_command(const TuneFlags& o) {
   record.spec = o.spec;
   record.out = o.out;
   record.shard = "0/1";
-  record.runs = most_rows(tune, !o.grid.empty());
+  const std::int64_t most = most_rows(tune, !o.grid.empty());
+  record.runs = most;
   record.resume = start.resuming;
   for (const std::string& s : o.sets) record.sets += " --set " + s;
   const std::string id = record_sweep_start(record, o.quiet);
@@ -163,7 +164,7 @@ int tune_command(const TuneFlags& o) {
                                                 start.resuming ? o.out + ".partial" : "");
     if (!start.resuming) {
       for (Attribute& x : a)
-        if (x.name == "runs_total") x.value = most_rows(tune, !o.grid.empty());  // at most; the rows at the end
+        if (x.name == "runs_total") x.value = most;  // at most; the rows at the end
       a.push_back({"kind", std::string("tune")});
       if (!o.grid.empty()) a.push_back({"tune_grid", o.grid});
     }
@@ -174,18 +175,14 @@ int tune_command(const TuneFlags& o) {
     return finish(exit_bad_input);
   }
   if (!o.quiet)
-    std::cout << "tune '" << spec.name << "': " << tune.cases.size() << " cases, at most "
-              << most_rows(tune, !o.grid.empty()) << " runs"
+    std::cout << "tune '" << spec.name << "': " << tune.cases.size() << " cases, at most " << most << " runs"
               << (known.empty() ? "" : ", " + std::to_string(known.size()) + " already done") << " on " << threads
               << " threads, " << to_string(target) << " kernels -> " << o.out << "\n";
   install_sweep_signal_handlers();
   TuneOutcome outcome;
   try {
     ProgressCounters counters;
-    const ProgressMode mode = o.progress == "never" || (o.quiet && o.progress == "auto") ? ProgressMode::never
-                              : o.progress == "always"                                   ? ProgressMode::always
-                                                                                         : ProgressMode::automatic;
-    ProgressReporter reporter(counters, most_rows(tune, !o.grid.empty()) - std::int64_t(known.size()), mode);
+    ProgressReporter reporter(counters, most - std::int64_t(known.size()), progress_mode(o.progress, o.quiet));
     const ThreadBatchEvaluator evaluator(threads, target);
     const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
       evaluator.parallel(n, body);

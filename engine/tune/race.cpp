@@ -161,13 +161,18 @@ std::vector<std::int64_t> Race::alive() const {
   return ids;
 }
 
+std::vector<double> Race::costs_by_seed(const std::vector<std::int64_t>& ids) const {
+  std::vector<double> m;
+  m.reserve(std::size_t(seeds_) * ids.size());
+  for (std::int64_t s = 0; s < seeds_; ++s)
+    for (std::int64_t id : ids) m.push_back(candidate(id).costs[std::size_t(s)]);
+  return m;
+}
+
 std::vector<std::int64_t> Race::ranked(const std::vector<std::int64_t>& ids) const {
   std::vector<double> sums(ids.size(), 0.0);
   if (seeds_ > 0 && ids.size() > 1) {
-    std::vector<double> m;
-    for (std::int64_t s = 0; s < seeds_; ++s)
-      for (std::int64_t id : ids) m.push_back(candidate(id).costs[std::size_t(s)]);
-    sums = friedman(m, std::size_t(seeds_), ids.size()).rank_sums;
+    sums = friedman(costs_by_seed(ids), std::size_t(seeds_), ids.size()).rank_sums;
   }
   std::vector<std::size_t> order(ids.size());
   std::iota(order.begin(), order.end(), 0);
@@ -248,9 +253,7 @@ void Race::end_iteration() {
 void Race::eliminate() {
   const std::vector<std::int64_t> ids = alive();
   if (ids.size() < 2) return;
-  std::vector<double> m;
-  for (std::int64_t s = 0; s < seeds_; ++s)
-    for (std::int64_t id : ids) m.push_back(candidate(id).costs[std::size_t(s)]);
+  const std::vector<double> m = costs_by_seed(ids);
   std::vector<bool> keep;
   if (settings_.test == RaceTest::friedman) {
     keep = friedman_survivors(m, std::size_t(seeds_), ids.size(), settings_.confidence);

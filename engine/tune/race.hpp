@@ -64,6 +64,8 @@ class Race {
   void end_iteration();
   void eliminate();
   std::vector<std::int64_t> alive() const;
+  // Seeds 0 .. seeds_-1 (rows) by `ids` (columns): the blocked tests' input.
+  std::vector<double> costs_by_seed(const std::vector<std::int64_t>& ids) const;
   // Alive configurations ranked on the seeds all of them ran (best first).
   std::vector<std::int64_t> ranked(const std::vector<std::int64_t>& ids) const;
   void add_initial(int n);

@@ -22,6 +22,7 @@
 using namespace chaosweep;
 using chaosweep::test::run_chaosweep;
 using chaosweep::test::TempDir;
+using chaosweep::test::wait_for_rows;
 using chaosweep::test::write_file;
 
 namespace {
@@ -174,23 +175,6 @@ void expect_same_results(const std::string& a, const std::string& b) {
     if (deterministic(x.text[k].first)) {
       ASSERT_EQ(x.text[k].second, y.text[k].second) << x.text[k].first;
     }
-}
-
-// Waits until `partial` holds at least `rows` rows (read between the
-// writer's batches) or the process has ended; false on timeout.
-bool wait_for_rows(const std::string& partial, std::int64_t rows, int pid) {
-  for (int i = 0; i < 6000; ++i) {
-    if (std::filesystem::exists(partial)) {
-      try {
-        if (chaosweep::count_rows(partial) >= rows) return true;
-      } catch (const std::exception&) {
-        // the writer has the file open right now
-      }
-    }
-    if (waitpid(pid, nullptr, WNOHANG) == pid) return false;
-    usleep(10000);
-  }
-  return false;
 }
 
 }  // namespace

@@ -36,7 +36,29 @@ const std::string spec_text =
     "[tune.parameters]\nds_index = [1, 2, 3]\nc = { min = 0.05, max = 1 }\n"
     "[tune.part.MZ]\nparameters = [\"ds_index\", \"c\"]\n[tune.part.plain]\nparameters = []\n";
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string shell_quoted(const std::string& s) { return "'" + s + "'"; }
+
+// The tune of spec_text run whole into `whole`, and again into `cut`, sent
+// `signal` once the first steps' rows are in cut's OUT.partial.
+struct Interrupted {
+  std::string spec, whole, cut;
+  int exit_code = 0;
+};
+Interrupted interrupted_tune(const TempDir& tmp, int signal) {
+  Interrupted t{tmp.file("t.toml"), tmp.file("whole.h5"), tmp.file("cut.h5")};
+  // A budget long enough that a loaded machine still sees it between steps.
+  std::string longer = spec_text;
+  longer.replace(longer.find("budget = 80"), 11, "budget = 400");
+  write_file(t.spec, longer);
+  EXPECT_EQ(run_chaosweep("tune " + shell_quoted(t.spec) + " -o " + shell_quoted(t.whole) + " -q").exit_code, 0);
+  const std::string partial = t.cut + ".partial";
+  const int pid = chaosweep::test::start_chaosweep("tune " + shell_quoted(t.spec) + " -o " + shell_quoted(t.cut) +
+                                                   " -q --threads 1");
+  if (!chaosweep::test::wait_for_rows(partial, 1, pid, &t.exit_code)) return t;  // it ended first
+  kill(pid, signal);
+  t.exit_code = chaosweep::test::wait_exit(pid);
+  return t;
+}
 
 }  // namespace
 
@@ -44,13 +66,13 @@ TEST(CliTune, RowsAreOrdinaryRowsTheSameAtAnyThreadCountAndTableTuneReadsThem) {
   TempDir tmp;
   const std::string spec = tmp.file("t.toml"), a = tmp.file("a.h5"), b = tmp.file("b.h5");
   write_file(spec, spec_text);
-  const auto r1 = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(a) + " --threads 1");
+  const auto r1 = run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(a) + " --threads 1");
   ASSERT_EQ(r1.exit_code, 0) << r1.err;
   EXPECT_TRUE(has(r1.out, "case open:")) << r1.out;
   EXPECT_TRUE(has(r1.out, "case plain: no parameters")) << r1.out;
-  const auto r2 = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(b) + " --threads 2 -q");
+  const auto r2 = run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(b) + " --threads 2 -q");
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
-  const auto cmp = run_chaosweep("compare " + quoted(a) + " " + quoted(b));
+  const auto cmp = run_chaosweep("compare " + shell_quoted(a) + " " + shell_quoted(b));
   EXPECT_EQ(cmp.exit_code, 0) << cmp.out << cmp.err;
   EXPECT_TRUE(has(cmp.out, "0 changed")) << cmp.out;
   // The rows: races spend at most the budget; validation on 6 fresh seeds per case.
@@ -76,36 +98,29 @@ TEST(CliTune, RowsAreOrdinaryRowsTheSameAtAnyThreadCountAndTableTuneReadsThem) {
   EXPECT_EQ(read_attribute(a, "kind"), "tune");
   EXPECT_EQ(read_attribute(a, "runs_total"), std::to_string(round.size()));
   // table tune: a row per case; the others read the file as any result file.
-  const auto t = run_chaosweep("table tune " + quoted(a));
+  const auto t = run_chaosweep("table tune " + shell_quoted(a));
   ASSERT_EQ(t.exit_code, 0) << t.err;
   for (const char* c : {"| open |", "| box |", "| plain |", "validated CT", "6/6"})
     EXPECT_TRUE(has(t.out, c)) << c << "\n" << t.out;
-  EXPECT_EQ(run_chaosweep("table summary " + quoted(a)).exit_code, 0);
-  const auto rerun = run_chaosweep("run --from " + quoted(a) + " --run-id 5");
+  EXPECT_EQ(run_chaosweep("table summary " + shell_quoted(a)).exit_code, 0);
+  const auto rerun = run_chaosweep("run --from " + shell_quoted(a) + " --run-id 5");
   EXPECT_EQ(rerun.exit_code, 0) << rerun.out << rerun.err;
   EXPECT_TRUE(has(rerun.out, "identical")) << rerun.out;
 }
 
 TEST(CliTune, KilledMidwayAndResumedItWritesTheSameFile) {
   TempDir tmp;
-  const std::string spec = tmp.file("t.toml"), whole = tmp.file("whole.h5"), cut = tmp.file("cut.h5");
-  write_file(spec, spec_text);
-  ASSERT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(whole) + " -q").exit_code, 0);
-  // Killed by kill -9 once the first steps' rows are in OUT.partial.
-  const auto partial = cut + ".partial";
-  const int pid = chaosweep::test::start_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " -q --threads 1");
-  for (int i = 0; i < 400 && !(fs::exists(partial) && count_rows(partial) > 0); ++i) usleep(5000);
-  kill(pid, SIGKILL);
-  chaosweep::test::wait_exit(pid);
+  const Interrupted t = interrupted_tune(tmp, SIGKILL);  // kill -9
+  const std::string &spec = t.spec, &whole = t.whole, &cut = t.cut, partial = cut + ".partial";
   ASSERT_TRUE(fs::exists(partial));
   const std::int64_t had = count_rows(partial);
-  const auto r = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " --resume");
+  const auto r = run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(cut) + " --resume");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(had == 0 || has(r.out, std::to_string(had) + " already done")) << r.out;
-  const auto cmp = run_chaosweep("compare " + quoted(whole) + " " + quoted(cut));
+  const auto cmp = run_chaosweep("compare " + shell_quoted(whole) + " " + shell_quoted(cut));
   EXPECT_EQ(cmp.exit_code, 0) << cmp.out;
   EXPECT_TRUE(has(cmp.out, "0 changed; 0 only in A, 0 only in B")) << cmp.out;
-  EXPECT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " --resume").exit_code, 0);
+  EXPECT_EQ(run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(cut) + " --resume").exit_code, 0);
 }
 
 TEST(CliTune, BadTuneInputExits2AndWritesNothing) {
@@ -114,7 +129,7 @@ TEST(CliTune, BadTuneInputExits2AndWritesNothing) {
   std::string bad = spec_text;
   bad.replace(bad.find("max = 1 }"), 9, "max = 1000000 }");
   write_file(spec, bad);
-  const auto r = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(out));
+  const auto r = run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(out));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(has(r.err, "tune.parameters.c.max")) << r.err;
   EXPECT_TRUE(has(r.err, "1000")) << r.err;  // the allowed range
@@ -122,11 +137,11 @@ TEST(CliTune, BadTuneInputExits2AndWritesNothing) {
   EXPECT_FALSE(fs::exists(out + ".partial"));
   // A spec with [tune] is not swept by mistake.
   write_file(spec, spec_text);
-  const auto s = run_chaosweep("sweep " + quoted(spec) + " -o " + quoted(out));
+  const auto s = run_chaosweep("sweep " + shell_quoted(spec) + " -o " + shell_quoted(out));
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_TRUE(has(s.err, "chaosweep tune")) << s.err;
   EXPECT_FALSE(fs::exists(out + ".partial"));
-  const auto small = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(out) + " --budget 4");
+  const auto small = run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(out) + " --budget 4");
   EXPECT_EQ(small.exit_code, 2);
   EXPECT_TRUE(has(small.err, "--budget: must be at least 10")) << small.err;
 }
@@ -144,42 +159,38 @@ TEST(CliTune, AGridsBestIsValidatedBesideTheTunersChoice) {
              "case = [ { label = \"open\", env = \"no_obstacles\" }, { label = \"box\", env = \"one_square\" } ]\n"
              "[part.axes]\nds_index = [1, 2, 3]\nc = [0.1, 0.5, 1]\n"
              "[[part]]\nname = \"plain\"\ncase = [ { label = \"plain\", env = \"no_obstacles\" } ]\n");
-  ASSERT_EQ(run_chaosweep("sweep " + quoted(grid_spec) + " -o " + quoted(grid) + " -q").exit_code, 0);
-  const auto r = run_chaosweep("tune " + quoted(spec) + " -o " + quoted(out) + " -q --grid " + quoted(grid));
+  ASSERT_EQ(run_chaosweep("sweep " + shell_quoted(grid_spec) + " -o " + shell_quoted(grid) + " -q").exit_code, 0);
+  const auto r =
+      run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(out) + " -q --grid " + shell_quoted(grid));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto config = read_i64_column(out, "config_id");
   const auto round = read_i64_column(out, "race_round");
   int beside = 0;
   for (std::size_t k = 0; k < config.size(); ++k) beside += config[k] == 0 && round[k] == 0;
   EXPECT_EQ(beside, 12);  // 6 seeds for each of the two raced cases
-  const auto t = run_chaosweep("table tune " + quoted(out) + " --grid " + quoted(grid));
+  const auto t = run_chaosweep("table tune " + shell_quoted(out) + " --grid " + shell_quoted(grid));
   ASSERT_EQ(t.exit_code, 0) << t.err;
   for (const char* c : {"grid's best, validated", "tuner <= grid", "grid runs", "cases", "% of the grid's"})
     EXPECT_TRUE(has(t.out, c)) << c << "\n" << t.out;
   // A grid without the case's label is named.
   const std::string other = tmp.file("other.h5");
   write_file(grid_spec, "[fixed]\nsize = 10\nlabel = \"x\"\nmax_time = 100\n[axes]\nds_index = [1, 2]\n");
-  ASSERT_EQ(run_chaosweep("sweep " + quoted(grid_spec) + " -o " + quoted(other) + " -q").exit_code, 0);
-  const auto bad =
-      run_chaosweep("tune " + quoted(spec) + " -o " + quoted(tmp.file("p.h5")) + " --grid " + quoted(other));
+  ASSERT_EQ(run_chaosweep("sweep " + shell_quoted(grid_spec) + " -o " + shell_quoted(other) + " -q").exit_code, 0);
+  const auto bad = run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(tmp.file("p.h5")) + " --grid " +
+                                 shell_quoted(other));
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_TRUE(has(bad.err, "no run labelled 'open'")) << bad.err;
 }
 
 TEST(CliTune, SigintFinishesTheRunsInFlightExits130AndResumes) {
   TempDir tmp;
-  const std::string spec = tmp.file("t.toml"), whole = tmp.file("whole.h5"), cut = tmp.file("cut.h5");
-  write_file(spec, spec_text);
-  ASSERT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(whole) + " -q").exit_code, 0);
-  const auto partial = cut + ".partial";
-  const int pid = chaosweep::test::start_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " -q --threads 1");
-  for (int i = 0; i < 400 && !(fs::exists(partial) && count_rows(partial) > 0); ++i) usleep(5000);
-  kill(pid, SIGINT);
-  const int code = chaosweep::test::wait_exit(pid);
+  const Interrupted t = interrupted_tune(tmp, SIGINT);
+  const std::string &spec = t.spec, &whole = t.whole, &cut = t.cut;
+  const int code = t.exit_code;
   if (code == 0) GTEST_SKIP() << "the tune finished before the signal";
   EXPECT_EQ(code, 130);
   EXPECT_FALSE(fs::exists(cut));
-  ASSERT_EQ(run_chaosweep("tune " + quoted(spec) + " -o " + quoted(cut) + " --resume -q").exit_code, 0);
-  const auto cmp = run_chaosweep("compare " + quoted(whole) + " " + quoted(cut));
+  ASSERT_EQ(run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(cut) + " --resume -q").exit_code, 0);
+  const auto cmp = run_chaosweep("compare " + shell_quoted(whole) + " " + shell_quoted(cut));
   EXPECT_TRUE(has(cmp.out, "0 changed; 0 only in A, 0 only in B")) << cmp.out;
 }

@@ -8,8 +8,11 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 
 #include <hdf5.h>
+
+#include "engine/store/h5_store.hpp"
 
 namespace chaosweep::test {
 
@@ -37,6 +40,25 @@ int wait_exit(int pid, long* max_rss_kib) {
   wait4(pid_t(pid), &status, 0, &usage);
   if (max_rss_kib) *max_rss_kib = usage.ru_maxrss;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+bool wait_for_rows(const std::string& partial, std::int64_t rows, int pid, int* exit_code) {
+  for (int i = 0; i < 6000; ++i) {
+    if (std::filesystem::exists(partial)) {
+      try {
+        if (chaosweep::count_rows(partial) >= rows) return true;
+      } catch (const std::exception&) {
+        // the writer has the file open right now
+      }
+    }
+    int status = 0;
+    if (waitpid(pid_t(pid), &status, WNOHANG) == pid) {
+      if (exit_code) *exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      return false;
+    }
+    usleep(10000);
+  }
+  return false;
 }
 
 void write_foreign_file(const std::string& path, const std::string& what) {

@@ -2,6 +2,7 @@
 // Shared by the engine, CLI and analysis tests: running the chaosweep binary
 // as a user would, and foreign HDF5 files (the kernel-level helpers, which
 // the kernel tests use alone, are in kernel_test_util.hpp).
+#include <cstdint>
 #include <string>
 
 #include "tests/support/kernel_test_util.hpp"
@@ -22,6 +23,10 @@ int start_chaosweep(const std::string& args);
 // Waits for pid; returns its exit code, or 128 + signal. `max_rss_kib`, when
 // given, receives the process's peak resident set size.
 int wait_exit(int pid, long* max_rss_kib = nullptr);
+// Waits until the result file `partial` holds at least `rows` rows (read
+// between the writer's writes) or the process has ended (its exit code, as
+// wait_exit gives it, in `exit_code`); false then, or on timeout (60 s).
+bool wait_for_rows(const std::string& partial, std::int64_t rows, int pid, int* exit_code = nullptr);
 
 // An HDF5 file that is not a chaosweep result file (docs/inputs.md): `what`
 // is "no-runs" (a dataset /data only), "other-columns" (/runs of two foreign
