@@ -73,7 +73,7 @@ Cell ct_cell(double v) { return std::isinf(v) ? Cell("inf (missed)") : sig_cell(
 }  // namespace
 
 std::vector<std::string> tune_table_columns() {
-  std::vector<std::string> c = {"label", "race_round", "config_id", "status", "coverage_time"};
+  std::vector<std::string> c = {"run_id", "label", "race_round", "config_id", "status", "coverage_time"};
   for (const ParamInfo& p : param_table()) c.emplace_back(p.name);
   return c;
 }
@@ -102,24 +102,36 @@ GridBest grid_best(const ResultSet& grid, const std::string& label, const std::v
 }
 
 TextTable tune_table(const ResultSet& rs, const ResultSet* grid, const TuneTableOptions& opt) {
-  for (const char* c : {"race_round", "config_id", "label"})
+  for (const char* c : {"run_id", "race_round", "config_id", "label"})
     if (!rs.has(c))
       throw AnalysisError("table tune: the results have no '" + std::string(c) +
                           "' column: not a file of chaosweep tune");
   const auto& round = rs.num("race_round");
   const auto& config = rs.num("config_id");
   const auto& labels = rs.text("label");
-  // Cases in the order the tune first ran them.
+  const auto& run_id = rs.num("run_id");
+  // Cases in the order a whole tune first ran them, whatever order shards
+  // were merged in: the raced ones (all in its first step), then those only
+  // validated, each in the spec's order (a case's least run_id is its index:
+  // a tune's run_ids are case + cases * k).
   std::vector<std::string> cases;
+  std::map<std::string, double> least_id;
   std::map<std::string, std::vector<std::size_t>> race, chosen, beside;
   for (std::size_t r = 0; r < rs.rows(); ++r) {
     if (round[r] < 0) throw AnalysisError("table tune: row " + std::to_string(r) + " is a sweep's, not a tune's");
     const std::string& l = labels[r];
-    if (!race.count(l) && !chosen.count(l) && !beside.count(l)) cases.push_back(l);
+    if (!least_id.count(l)) {
+      cases.push_back(l);
+      least_id[l] = run_id[r];
+    }
+    least_id[l] = std::min(least_id[l], run_id[r]);
     if (round[r] > 0) race[l].push_back(r);
     else if (config[r] > 0) chosen[l].push_back(r);
     else beside[l].push_back(r);
   }
+  std::stable_sort(cases.begin(), cases.end(), [&](const std::string& a, const std::string& b) {
+    return std::pair(!race.count(a), least_id[a]) < std::pair(!race.count(b), least_id[b]);
+  });
   TextTable t;
   t.title = "Tuned by racing: per case the configuration chosen, validated on fresh seeds";
   t.header = {"case", "configuration", "race runs", "configurations", "validated CT (median)", "interval", "ok"};

@@ -14,6 +14,8 @@
 #include "engine/spec/embedded_files.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/slurm_dir.hpp"
+#include "engine/tune/tune_runner.hpp"
+#include "engine/tune/tune_spec.hpp"
 
 namespace chaosweep {
 
@@ -101,6 +103,8 @@ struct SlurmJob {
   SweepSpec spec;
   fs::path dir;
   std::string job_name;
+  bool tune = false;      // a spec with [tune]: each task races its shard of the cases
+  std::int64_t runs = 0;  // the sweep's runs; a tune's at most
 };
 
 // Checks every value before anything is written: a bad value leaves no
@@ -112,10 +116,20 @@ SlurmJob checked_job(const SlurmOptions& o) {
   // scripts cd here), so a bad one stops here, not in every task.
   EnvironmentCache maps;
   preload_environments(spec, maps);
-  if (o.tasks > spec.size())
+  job.tune = !spec.tune.empty();
+  job.runs = spec.size();
+  if (job.tune) {
+    const TuneSpec tune = tune_spec_of(spec, o.spec);  // a bad [tune] stops here, not in every task
+    job.runs = tune_most_rows(tune, false);
+    if (o.tasks > int(tune.cases.size()))
+      throw BadSlurmValue(
+          "--tasks: " + std::to_string(o.tasks) + " is more than the tune's " + std::to_string(tune.cases.size()) +
+          " cases (a task races whole cases): give --tasks in [1, " + std::to_string(tune.cases.size()) + "]");
+  } else if (o.tasks > spec.size()) {
     throw BadSlurmValue("--tasks: " + std::to_string(o.tasks) + " is more than the spec's " +
                         std::to_string(spec.size()) + " runs (a task runs at least one): give --tasks in [1, " +
                         std::to_string(spec.size()) + "]");
+  }
   if (job.job_name.empty()) job.job_name = to_slurm_job_name("chaosweep-" + spec.name);
   require("--job-name", check_slurm_job_name(job.job_name));
   if (!o.partition.empty()) require("--partition", check_slurm_partition(o.partition));
@@ -160,6 +174,7 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
                                                    {"DIR", shell_quote(dir.string())},
                                                    {"WORKDIR", shell_quote(fs::current_path().string())},
                                                    {"CHAOSWEEP", shell_quote(self_path())},
+                                                   {"COMMAND", job.tune ? "tune" : "sweep"},
                                                    {"SPEC", shell_quote(spec_path)},
                                                    {"SETS", sets},
                                                    {"TASKS", std::to_string(o.tasks)}});
@@ -167,7 +182,7 @@ std::string write_job_scripts(const SlurmOptions& o, const SlurmJob& job) {
     write_checked(out, text);
     fs::permissions(out, fs::perms::owner_exec, fs::perm_options::add);
   }
-  write_cluster_plan(dir, ClusterPlan{spec_path, job.spec.name, o.tasks, std::int64_t(job.spec.size())});
+  write_cluster_plan(dir, ClusterPlan{spec_path, job.spec.name, o.tasks, job.runs, job.tune});
   return array;
 }
 
@@ -211,8 +226,9 @@ int run_slurm(const SlurmOptions& o) {
   }
   try {
     const std::string array = write_job_scripts(o, job);
-    std::cout << "wrote " << (job.dir / "sweep.sbatch").string() << " (" << job.spec.size() << " runs in " << o.tasks
-              << " shards, --array=" << array << ") and " << (job.dir / "merge.sbatch").string() << "\n";
+    std::cout << "wrote " << (job.dir / "sweep.sbatch").string() << " (" << (job.tune ? "a tune of at most " : "")
+              << job.runs << " runs in " << o.tasks << " shards, --array=" << array << ") and "
+              << (job.dir / "merge.sbatch").string() << "\n";
     if (o.submit) submit_jobs(job.dir);
     return exit_ok;
   } catch (const std::exception& e) {
@@ -224,14 +240,16 @@ int run_slurm(const SlurmOptions& o) {
 }  // namespace
 
 void add_slurm_commands(CLI::App& app, std::function<int()>& action) {
-  auto* cmd =
-      app.add_subcommand("slurm", "Write (and optionally submit) a SLURM job array that runs a sweep in shards");
+  auto* cmd = app.add_subcommand(
+      "slurm", "Write (and optionally submit) a SLURM job array that runs a sweep (or a tune) in shards");
   cmd->footer(
       "Writes DIR/sweep.sbatch (one shard per array task, --array=0-(N-1)[%M], logs in DIR/logs),\n"
       "DIR/merge.sbatch (merges DIR/shard_*.h5 into DIR/results.h5) and DIR/cluster.toml (for\n"
-      "`chaosweep status` and `merge --slurm-dir`). With --submit, calls sbatch for both, the merge\n"
-      "job with --dependency=afterok on the array (sbatch run without a shell), and records both job\n"
-      "ids in DIR/jobs.txt for `chaosweep status`. Every value that goes into a script is checked\n"
+      "`chaosweep status` and `merge --slurm-dir`). A spec with a [tune] section runs `chaosweep\n"
+      "tune --shard K/N` per task (each races its share of the cases; --tasks at most the cases).\n"
+      "With --submit, calls sbatch for both, the merge job with --dependency=afterok on the array\n"
+      "(sbatch run without a shell), and records both job ids in DIR/jobs.txt for `chaosweep status`. Every value that "
+      "goes into a script is checked\n"
       "against the form SLURM accepts for it (exit 2 otherwise); paths are shell-quoted. Example:\n"
       "  chaosweep slurm experiments/fig6.toml --tasks 16 --concurrency 8 -o runs/fig6 --submit");
   auto o = std::make_shared<SlurmOptions>();

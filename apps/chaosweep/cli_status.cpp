@@ -88,6 +88,17 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
   std::string why;
   const std::string name = "  shard " + std::to_string(k) + ": ";
   const bool live = w.lock.held || (w.task && slurm_state_live(w.task->state));
+  if (fs::exists(fs::symlink_status(file, ec)) && plan.tune) {
+    // A tune shard's rows are not known ahead: finished when its tune was.
+    try {
+      c.identity[k] = check_tune_shard_file(file.string(), k, plan.tasks);
+      c.finished.push_back(k);
+    } catch (const std::exception& e) {
+      c.damaged.push_back(k);
+      c.broken += name + e.what() + "; remove it, then resubmit\n";
+    }
+    return;
+  }
   if (fs::exists(fs::symlink_status(file, ec))) {
     std::int64_t have = rows_of(file.string(), why);
     if (have == want) {
@@ -116,7 +127,9 @@ void count_shard(ShardCensus& c, const std::string& dir, const ClusterPlan& plan
     c.broken += name + why + "; remove it, then resubmit\n";
     return;
   }
-  const std::string rows = has_part && have >= 0 ? std::to_string(have) + " of " + std::to_string(want) + " runs" : "";
+  const std::string rows = !has_part || have < 0 ? ""
+                           : plan.tune           ? std::to_string(have) + " runs"
+                                                 : std::to_string(have) + " of " + std::to_string(want) + " runs";
   if (live) {
     // A held lock is a writer at work whatever SLURM says; SLURM's pending
     // is a task not started (or requeued) yet.
@@ -215,7 +228,8 @@ SlurmReport ask_slurm(const std::string& dir, int tasks) {
 int run_status(const std::string& dir) {
   try {
     const ClusterPlan plan = read_cluster_plan(dir);
-    std::cout << "sweep '" << plan.name << "': " << plan.tasks << " shards, " << plan.runs << " runs\n";
+    std::cout << (plan.tune ? "tune '" : "sweep '") << plan.name << "': " << plan.tasks << " shards, "
+              << (plan.tune ? "at most " : "") << plan.runs << " runs\n";
     const SlurmReport slurm = ask_slurm(dir, plan.tasks);
     for (const std::string& n : slurm.notes) std::cout << "note: " << n << "\n";
     ShardCensus census;

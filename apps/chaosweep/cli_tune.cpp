@@ -31,7 +31,7 @@ namespace chaosweep {
 namespace {
 
 struct TuneFlags {
-  std::string spec, out, grid, progress = "auto";
+  std::string spec, out, grid, shard, progress = "auto";
   std::vector<std::string> sets;
   std::int64_t budget = 0;    // 0: the spec's
   int validation_seeds = -1;  // -1: the spec's
@@ -43,11 +43,12 @@ struct TuneFlags {
 std::vector<KnownRun> known_runs(const std::string& partial) {
   const TypedColumns c = read_typed_columns(partial);
   std::vector<KnownRun> k(c.rows);
+  const auto& id = c.i64.at("run_id");
   const auto& hash = c.i64.at("param_hash");
   const auto& status = c.text.at("status");
   const auto& ct = c.f64.at("coverage_time");
   for (std::size_t r = 0; r < c.rows; ++r)
-    k[r] = {hash[r], status[r] == "ok" ? ct[r] : std::numeric_limits<double>::infinity()};
+    k[r] = {id[r], hash[r], status[r] == "ok" ? ct[r] : std::numeric_limits<double>::infinity()};
   return k;
 }
 
@@ -81,14 +82,20 @@ std::vector<std::optional<std::vector<double>>> grid_choices(const TuneSpec& tun
   return out;
 }
 
-std::int64_t most_rows(const TuneSpec& tune, bool grid) {
-  std::int64_t n = 0;
-  for (const TuneCase& c : tune.cases) n += c.budget + std::int64_t(tune.validation_seeds) * (grid ? 2 : 1);
-  return n;
+// --shard K/N (or the SLURM array task's): N at most the cases, as each
+// shard races whole cases.
+Shard tune_shard(const std::string& text, const TuneSpec& tune) {
+  const Shard s = parse_shard(text);
+  const int cases = int(tune.cases.size());
+  if (s.count > cases)
+    throw SpecError("--shard: " + std::to_string(s.index) + "/" + std::to_string(s.count) + " asks for " +
+                    std::to_string(s.count) + " shards of a tune of " + std::to_string(cases) +
+                    " cases (a shard races whole cases): give N in [1, " + std::to_string(cases) + "]");
+  return s;
 }
 
 void print_outcome(const TuneSpec& tune, const TuneOutcome& out) {
-  for (std::size_t i = 0; i < tune.cases.size(); ++i) {
+  for (std::size_t i : out.cases) {
     const TuneCase& c = tune.cases[i];
     std::cout << "case " << (c.run.label.empty() ? std::to_string(i) : c.run.label) << ": ";
     if (!out.races[i]) {
@@ -117,10 +124,12 @@ int tune_command(const TuneFlags& o) {
   TuneSpec tune;
   EnvironmentCache cache;
   std::vector<std::optional<std::vector<double>>> beside;
+  Shard shard;
   try {
     spec = load_sweep_spec(o.spec, spec_overrides(o.sets));
     tune = tune_spec_of(spec, o.spec, o.budget > 0 ? std::optional<std::int64_t>(o.budget) : std::nullopt);
     if (o.validation_seeds >= 0) tune.validation_seeds = o.validation_seeds;
+    shard = tune_shard(o.shard, tune);
     preload_environments(spec, cache);
     if (!o.grid.empty()) beside = grid_choices(tune, o.grid);
   } catch (const std::exception& e) {
@@ -128,10 +137,9 @@ int tune_command(const TuneFlags& o) {
     return exit_bad_input;
   }
   const SweepInputs inputs = sweep_inputs(spec, cache);
-  const Shard whole{0, 1};
   SweepStart start;
   try {
-    start = start_sweep_output(o.out, o.resume, o.force, inputs, whole);
+    start = start_sweep_output(o.out, o.resume, o.force, inputs, shard, false);
   } catch (const std::exception& e) {
     std::cerr << "chaosweep tune: " << e.what() << "\n";
     return exit_bad_input;
@@ -146,8 +154,8 @@ int tune_command(const TuneFlags& o) {
   SweepRecord record;
   record.spec = o.spec;
   record.out = o.out;
-  record.shard = "0/1";
-  const std::int64_t most = most_rows(tune, !o.grid.empty());
+  record.shard = std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  const std::int64_t most = tune_most_rows(tune, !o.grid.empty(), shard.index, shard.count);
   record.runs = most;
   record.resume = start.resuming;
   for (const std::string& s : o.sets) record.sets += " --set " + s;
@@ -160,7 +168,7 @@ int tune_command(const TuneFlags& o) {
   std::unique_ptr<H5RunWriter> writer;
   try {
     if (start.resuming) known = known_runs(o.out + ".partial");
-    std::vector<Attribute> a = sweep_provenance(spec, inputs, o.spec, whole, threads, to_string(target),
+    std::vector<Attribute> a = sweep_provenance(spec, inputs, o.spec, shard, threads, to_string(target),
                                                 start.resuming ? o.out + ".partial" : "");
     if (!start.resuming) {
       for (Attribute& x : a)
@@ -175,7 +183,11 @@ int tune_command(const TuneFlags& o) {
     return finish(exit_bad_input);
   }
   if (!o.quiet)
-    std::cout << "tune '" << spec.name << "': " << tune.cases.size() << " cases, at most " << most << " runs"
+    std::cout << "tune '" << spec.name << "': " << tune.cases.size() << " cases"
+              << (shard.count > 1 ? " (shard " + record.shard + ": its cases i % " + std::to_string(shard.count) +
+                                        " == " + std::to_string(shard.index) + ")"
+                                  : "")
+              << ", at most " << most << " runs"
               << (known.empty() ? "" : ", " + std::to_string(known.size()) + " already done") << " on " << threads
               << " threads, " << to_string(target) << " kernels -> " << o.out << "\n";
   install_sweep_signal_handlers();
@@ -191,6 +203,8 @@ int tune_command(const TuneFlags& o) {
     opt.stop = &sweep_stop_requested;
     opt.progress = &counters;
     opt.also_validate = beside;
+    opt.shard_index = shard.index;
+    opt.shard_count = shard.count;
     outcome = run_tune(
         tune, evaluator, opt, [&](const std::vector<RunRow>& rows) { writer->append(rows, parallel); }, cache, known);
   } catch (const OutOfRoom& e) {
@@ -235,6 +249,9 @@ void add_tune_command(CLI::App& app, std::function<int()>& action) {
       "OUT with its race_round (0: validation) and config_id. Deterministic for a spec and its\n"
       "tune.seed, whatever --threads. Rows go to OUT.partial a step at a time; kill -9 or\n"
       "SIGINT/SIGTERM lose at most the runs in flight: continue with --resume.\n"
+      "Cases race independently: --shard K/N races the cases i with i % N == K, and their rows\n"
+      "(run_ids too) are the whole tune's; `chaosweep merge` joins the N shard files, and\n"
+      "`chaosweep slurm` runs a tune spec's shards as array tasks.\n"
       "Example: chaosweep tune experiments/table1_tune.toml -o out/table1_tune/tune.h5");
   auto o = std::make_shared<TuneFlags>();
   cmd->add_option("spec", o->spec, "sweep spec with a [tune] section (TOML)")->required()->check(CLI::ExistingFile);
@@ -248,6 +265,10 @@ void add_tune_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--grid", o->grid, "a grid search's results (.h5): validate its best per case (by label) too")
       ->check(CLI::ExistingFile);
   cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--shard", o->shard,
+                  "race only the cases i with i % N == K; default: from SLURM_ARRAY_TASK_ID and "
+                  "SLURM_ARRAY_TASK_COUNT when set")
+      ->type_name("K/N");
   cmd->add_flag("--resume", o->resume, "continue OUT.partial of the same spec (or do nothing if OUT is complete)");
   add_force_flag(*cmd, o->force);
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");

@@ -19,132 +19,18 @@
 #include "engine/store/h5_file_rows.hpp"
 #include "engine/store/h5_store.hpp"
 #include "engine/store/input_identity.hpp"
+#include "engine/store/merge_files.hpp"
 #include "engine/store/provenance.hpp"
 #include "engine/store/rollback_driver.hpp"
+#include "engine/store/tune_merge.hpp"
 
 namespace chaosweep {
 
 namespace fs = std::filesystem;
 using h5::Handle;
+using namespace merge_detail;
 
 namespace {
-
-[[noreturn]] void fail(const std::string& what) { throw std::runtime_error(what); }
-// H5Fclose without HDF5's error dump: its failure (a full disk) is reported
-// as the merge's own.
-herr_t close_quietly(hid_t file) {
-  herr_t rc;
-  H5E_BEGIN_TRY { rc = H5Fclose(file); }
-  H5E_END_TRY;
-  return rc;
-}
-
-[[noreturn]] void fail_write(const std::string& path) {
-  throw OutOfRoom("cannot write " + path + " (the disk may be full, or the file-size limit reached: ulimit -f)");
-}
-
-// A shard file's place in its sweep, from its provenance attributes.
-struct ShardOf {
-  std::string spec_hash, shard;  // shard as written: "K/N"
-  std::string inputs_hash;       // "" when not recorded (an older chaosweep)
-  int index = 0, count = 1;
-  std::int64_t runs_total = 0;
-};
-
-// Attribute `name` of the open `file` as text (read_attribute's, through one
-// open of the file): "" when absent and not `required`.
-std::string attribute(hid_t file, const std::string& path, const char* name, bool required = true) {
-  Handle attr{-1, H5Aclose};
-  H5E_BEGIN_TRY { attr.id = H5Aopen(file, name, H5P_DEFAULT); }
-  H5E_END_TRY;
-  if (attr.id < 0) {
-    if (!required) return {};
-    fail(path + " has no attribute '" + name + "' (not a chaosweep result file?)");
-  }
-  return h5::attribute_text(attr.id, path, name);
-}
-
-ShardOf shard_of(const std::string& path) {
-  ShardOf s;
-  const Handle file{open_result_file(path), H5Fclose};  // throws naming the file
-  s.spec_hash = attribute(file.id, path, "spec_hash");
-  s.shard = attribute(file.id, path, "shard");
-  try {
-    s.inputs_hash = attribute(file.id, path, "inputs_hash", false);
-  } catch (const std::exception&) {
-  }
-  const std::string total = attribute(file.id, path, "runs_total");
-  char tail = 0;
-  if (std::sscanf(s.shard.c_str(), "%d/%d%c", &s.index, &s.count, &tail) != 2 || s.index < 0 || s.count < 1 ||
-      s.index >= s.count)
-    fail(path + ": attribute 'shard' is '" + s.shard +
-         "', not K/N (a merged file cannot be merged again: give its shard files)");
-  try {
-    std::size_t used = 0;
-    s.runs_total = std::stoll(total, &used);
-    if (used != total.size() || s.runs_total < 0 || s.runs_total > (std::int64_t(1) << 62))
-      throw std::invalid_argument(total);
-  } catch (const std::exception&) {
-    fail(path + ": attribute 'runs_total' is '" + total + "', not a run count");
-  }
-  return s;
-}
-
-// Why shard `path` cannot be merged with `first` though their spec is the
-// same: the environment files differ (named), or `path` records none.
-std::string different_inputs(const std::string& path, const std::string& first, bool unrecorded) {
-  if (unrecorded)
-    return path +
-           " does not record its input files (written by an older chaosweep): whether its environment "
-           "files match " +
-           first + "'s cannot be checked";
-  const std::string changes = changed_inputs(read_attribute(first, "input_files"), read_attribute(path, "input_files"));
-  return path + " was made with other input files than " + first + ": " +
-         (changes.empty() ? "inputs_hash differs" : changes);
-}
-
-// An input's /runs, open for the whole merge.
-struct Input {
-  std::string path;
-  ShardOf shard;
-  std::unique_ptr<Handle> file, dset, ftype, native;
-  hsize_t rows = 0;
-};
-
-void open_input(Input& in, std::size_t cache_bytes) {
-  in.file = std::make_unique<Handle>(open_result_file(in.path), H5Fclose);
-  Handle dapl{H5Pcreate(H5P_DATASET_ACCESS), H5Pclose};
-  H5Pset_chunk_cache(dapl.id, H5D_CHUNK_CACHE_NSLOTS_DEFAULT, cache_bytes, H5D_CHUNK_CACHE_W0_DEFAULT);
-  hid_t d;
-  H5E_BEGIN_TRY { d = H5Dopen2(in.file->id, "/runs", dapl.id); }
-  H5E_END_TRY;
-  if (d < 0) fail(in.path + " has no /runs dataset (not a chaosweep result file)");
-  in.dset = std::make_unique<Handle>(d, H5Dclose);
-  in.ftype = std::make_unique<Handle>(H5Dget_type(d), H5Tclose);
-  in.native = std::make_unique<Handle>(H5Tget_native_type(in.ftype->id, H5T_DIR_ASCEND), H5Tclose);
-  Handle space{H5Dget_space(d), H5Sclose};
-  H5Sget_simple_extent_dims(space.id, &in.rows, nullptr);
-}
-
-// Rows [first, first + n) of `in` in its native row type.
-void read_rows(const Input& in, hsize_t first, hsize_t n, std::vector<unsigned char>& buf, hid_t type) {
-  buf.assign(std::size_t(n) * H5Tget_size(type), 0);
-  if (n == 0) return;
-  Handle fspace{H5Dget_space(in.dset->id), H5Sclose};
-  H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &first, nullptr, &n, nullptr);
-  Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
-  herr_t rc;
-  H5E_BEGIN_TRY { rc = H5Dread(in.dset->id, type, mspace.id, fspace.id, H5P_DEFAULT, buf.data()); }
-  H5E_END_TRY;
-  if (rc < 0) fail("cannot read /runs of " + in.path + " (rows " + std::to_string(first) + "..): the file is damaged");
-}
-
-void reclaim(hid_t type, std::vector<unsigned char>& buf) {
-  const hsize_t n = buf.size() / H5Tget_size(type);
-  if (n == 0 || H5Tdetect_class(type, H5T_STRING) <= 0) return;
-  Handle space{H5Screate_simple(1, &n, nullptr), H5Sclose};
-  H5Dvlen_reclaim(type, space.id, H5P_DEFAULT, buf.data());
-}
 
 // A shard cannot hold more rows than its share of the runs.
 void check_row_count(const Input& in, std::int64_t runs_total) {
@@ -208,26 +94,6 @@ void check_all_run_ids(const Input& in, std::int64_t runs_total) {
   }
 }
 
-// The SIMD targets of every input, each once, in order of first use.
-std::string simd_targets(const std::vector<Input>& inputs) {
-  std::string targets;
-  for (const Input& in : inputs)
-    if (has_attribute(in.path, "simd_target"))
-      targets = join_name_lists(targets, read_attribute(in.path, "simd_target"));
-  return targets;
-}
-
-// More shards than this process may open files: raise the soft limit.
-void allow_open_files(std::size_t n) {
-  rlimit lim{};
-  if (getrlimit(RLIMIT_NOFILE, &lim) != 0 || lim.rlim_cur == RLIM_INFINITY || lim.rlim_cur >= n + 64) return;
-  lim.rlim_cur = std::min<rlim_t>(lim.rlim_max, n + 64);
-  setrlimit(RLIMIT_NOFILE, &lim);
-}
-
-// The output's chunks: 1024 rows (as a sweep writes), shuffled and deflated.
-constexpr hsize_t out_chunk_rows = 1024;
-constexpr int out_deflate_level = 4;
 // Raw blocks hold at least a chunk of every shard unfiltered: merges of more
 // shards than fit take the converting path alone.
 constexpr std::size_t raw_block_cap = std::size_t(256) << 20;
@@ -269,14 +135,9 @@ void write_converted(const std::vector<const Input*>& by_index, hid_t dset, hid_
       for (hsize_t i = 0; i < have; ++i)
         std::memcpy(out.data() + std::size_t(i * count + k) * rs, part[k].data() + std::size_t(i) * rs, rs);
     }
-    Handle fspace{H5Dget_space(dset), H5Sclose};
-    H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, &first, nullptr, &n, nullptr);
-    Handle mspace{H5Screate_simple(1, &n, nullptr), H5Sclose};
-    herr_t rc;
-    H5E_BEGIN_TRY { rc = H5Dwrite(dset, type, mspace.id, fspace.id, H5P_DEFAULT, out.data()); }
-    H5E_END_TRY;
+    const bool written = write_rows(dset, type, first, n, out.data());
     reclaim_parts();  // the strings `out` pointed to too
-    if (rc < 0) fail_write(path);
+    if (!written) fail_write(path);
   }
 }
 
@@ -385,25 +246,13 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
   std::vector<const Input*> by_index(std::size_t(count), nullptr);
   for (const Input& in : inputs) by_index[std::size_t(in.shard.index)] = &in;
   const hid_t type = inputs[0].native->id;
-  Handle fapl{rollback_fapl(), H5Pclose};
-  hid_t f;
-  H5E_BEGIN_TRY { f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id); }
-  H5E_END_TRY;
-  if (f < 0) fail("cannot create " + path + ": " + rollback_open_error());
-  Handle file{f, close_quietly};  // also when a failed write unwinds
-  hsize_t dims = hsize_t(total), maxdims = H5S_UNLIMITED, chunk = out_chunk_rows;
-  Handle space{H5Screate_simple(1, &dims, &maxdims), H5Sclose};
-  Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
-  H5Pset_chunk(dcpl.id, 1, &chunk);
-  H5Pset_shuffle(dcpl.id);
-  H5Pset_deflate(dcpl.id, out_deflate_level);
-  Handle dset{H5Dcreate2(file.id, "runs", inputs[0].ftype->id, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
-  if (dset.id < 0) fail("cannot create /runs in " + path);
-  const FileRows out_rows = file_rows_of(dset.id);
+  MergedFile out(path, hsize_t(total), inputs[0].ftype->id);
+  const hid_t dset = out.runs();
+  const FileRows out_rows = file_rows_of(dset);
   // The file type's run_id (its members in memory order, as H5Dget_type gives).
   std::size_t run_id_at = std::string::npos;
   {
-    Handle ftype{H5Dget_type(dset.id), H5Tclose};
+    Handle ftype{H5Dget_type(dset), H5Tclose};
     const int i = H5Tget_member_index(ftype.id, "run_id");
     if (int64_run_id_offset(ftype.id) != std::string::npos && out_rows.row_size > 0)
       run_id_at = out_rows.offsets[unsigned(i)];
@@ -418,59 +267,58 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
   }
   const hsize_t shard_rows = hsize_t(shard_size(total, 0, count));
   if (!raw) {
-    write_converted(by_index, dset.id, type, hsize_t(total), 0, shard_rows, per_shard, path);
+    write_converted(by_index, dset, type, hsize_t(total), 0, shard_rows, per_shard, path);
   } else {
     const hsize_t chunk_set = hsize_t(count) * out_chunk_rows * out_rows.row_size;
     const hsize_t block = out_chunk_rows * std::clamp<hsize_t>(options.block_bytes / chunk_set, 1, 64);
     std::vector<std::vector<unsigned char>> rows(by_index.size());
     for (hsize_t j0 = 0; j0 < shard_rows; j0 += block) {
       if (read_raw_block(by_index, j0, block, out_rows, run_id_at, total, options.parallel, rows))
-        write_raw_block(rows, j0, block, out_rows, dset.id, hsize_t(total), options.parallel, path);
+        write_raw_block(rows, j0, block, out_rows, dset, hsize_t(total), options.parallel, path);
       else
-        write_converted(by_index, dset.id, type, hsize_t(total), j0, std::min(j0 + block, shard_rows), out_chunk_rows,
+        write_converted(by_index, dset, type, hsize_t(total), j0, std::min(j0 + block, shard_rows), out_chunk_rows,
                         path);
     }
   }
-  // Provenance: the first shard's, with the shard-specific entries replaced.
-  copy_attributes(inputs[0].path, file.id, {"shard", "simd_target"});
-  std::string from;
-  for (const Input& in : inputs) from += (from.empty() ? "" : "\n") + in.path;
-  write_text_attribute(
-      file.id, "shard",
-      "merged from " + std::to_string(inputs.size()) + " files of " + std::to_string(count) + " shards");
-  write_text_attribute(file.id, "merged_from", from);
-  write_text_attribute(file.id, "merged_at", utc_now());
-  if (const std::string targets = simd_targets(inputs); !targets.empty())
-    write_text_attribute(file.id, "simd_target", targets);
-  H5Dclose(dset.id);
-  dset.id = -1;
-  const herr_t closed = close_quietly(file.id);  // flushes: fails when the disk is full
-  file.id = -1;
-  if (closed < 0) {
-    roll_back(path);
-    fail_write(path);
-  }
+  out.finish(inputs, {}, {});
 }
 
 }  // namespace
 
 std::string merge_temp_path(const std::string& output) { return output + ".merging"; }
 
+namespace {
+
+// "1,4,7", the first 20 and a count beyond.
+std::string shard_list(const std::vector<int>& shards) {
+  std::string s;
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    if (i == 20) return s + ",... (" + std::to_string(shards.size()) + " shards)";
+    if (i > 0) s += ',';
+    s += std::to_string(shards[i]);
+  }
+  return s;
+}
+
+}  // namespace
+
 std::string MergeReport::text() const {
+  if (tune) {
+    std::string s = std::to_string(rows) + " rows of a tune in " + std::to_string(shard_count) + " shards";
+    if (missing == 0) return s;
+    const std::string shards = shard_list(shards_to_rerun);
+    s += "\nmissing shards ";
+    s += shards + " of " + std::to_string(shard_count) + " (e.g. chaosweep tune SPEC -o OUT --shard " +
+         std::to_string(shards_to_rerun.front()) + "/" + std::to_string(shard_count) + " --resume)";
+    return s;
+  }
   std::string s = std::to_string(rows) + " rows of " + std::to_string(runs_total) + " runs";
   if (missing > 0) {
     std::string ids;
     for (std::size_t i = 0; i < first_missing.size(); ++i) ids += (i ? ", " : "") + std::to_string(first_missing[i]);
     s += "\nmissing " + std::to_string(missing) + " runs (run_id " + ids +
          (missing > std::int64_t(first_missing.size()) ? ", ..." : "") + ")";
-    std::string shards;
-    for (std::size_t i = 0; i < shards_to_rerun.size(); ++i) {
-      if (i == 20) {
-        shards += ",... (" + std::to_string(shards_to_rerun.size()) + " shards)";
-        break;
-      }
-      shards += (shards.empty() ? "" : ",") + std::to_string(shards_to_rerun[i]);
-    }
+    const std::string shards = shard_list(shards_to_rerun);
     s += "\nre-run shards " + shards + " of " + std::to_string(shard_count) +
          " (e.g. chaosweep sweep SPEC -o OUT --shard " + std::to_string(shards_to_rerun.front()) + "/" +
          std::to_string(shard_count) + " --resume)";
@@ -498,29 +346,17 @@ MergeReport merge_results(const std::vector<std::string>& paths, const std::stri
     inputs[f].path = paths[f];
     inputs[f].shard = shard_of(paths[f]);
   }
+  for (std::size_t f = 0; f < inputs.size(); ++f)
+    if ((inputs[f].shard.kind == "tune") != (inputs[0].shard.kind == "tune"))
+      fail(paths[f] + " and " + paths[0] + " are not both a tune's shards (one is a sweep's): they cannot be merged");
+  if (inputs[0].shard.kind == "tune") return merge_tune_inputs(inputs, output, options);
   report.runs_total = inputs[0].shard.runs_total;
   report.shard_count = inputs[0].shard.count;
-  for (std::size_t f = 0; f < inputs.size(); ++f) {
-    const ShardOf& s = inputs[f].shard;
-    if (s.spec_hash != inputs[0].shard.spec_hash)
-      fail(paths[f] + " comes from another spec than " + paths[0] + " (spec_hash differs)");
-    if (s.inputs_hash.empty() || s.inputs_hash != inputs[0].shard.inputs_hash)
-      fail(different_inputs(paths[f], paths[0], s.inputs_hash.empty()));
-    if (s.count != report.shard_count)
-      fail(paths[f] + " is shard " + s.shard + " but " + paths[0] + " has " + std::to_string(report.shard_count) +
-           " shards");
-    if (s.runs_total != report.runs_total)
-      fail(paths[f] + " has runs_total " + std::to_string(s.runs_total) + " but " + paths[0] + " has " +
+  check_inputs_belong_together(inputs);
+  for (std::size_t f = 0; f < inputs.size(); ++f)
+    if (inputs[f].shard.runs_total != report.runs_total)
+      fail(paths[f] + " has runs_total " + std::to_string(inputs[f].shard.runs_total) + " but " + paths[0] + " has " +
            std::to_string(report.runs_total));
-    for (std::size_t g = 0; g < f; ++g) {
-      std::error_code ec;
-      if (fs::equivalent(paths[f], paths[g], ec)) fail(paths[f] + " is given twice (also as " + paths[g] + ")");
-      if (s.shard == inputs[g].shard.shard)
-        fail(paths[f] + " and " + paths[g] + " are both shard " + s.shard + " of the spec: give each shard once");
-    }
-    // What compare, table and figure need, so a merged file is one they read.
-    check_result_columns(paths[f]);
-  }
   allow_open_files(inputs.size());
   std::size_t row_size = 0;
   {
@@ -536,11 +372,10 @@ MergeReport merge_results(const std::vector<std::string>& paths, const std::stri
   const std::size_t cache = per_shard < 1024 ? 1024 * row_size + 4096 : 0;
   for (std::size_t f = 0; f < inputs.size(); ++f) {
     open_input(inputs[f], cache);
-    if (f > 0 && H5Tequal(inputs[f].ftype->id, inputs[0].ftype->id) <= 0)
-      fail(paths[f] + " has other columns than " + paths[0] + " (written by another engine version)");
     check_row_count(inputs[f], report.runs_total);
     report.rows += std::int64_t(inputs[f].rows);
   }
+  check_same_columns(inputs);
   // Missing runs: the rest of each shard (none of an absent shard).
   std::vector<std::int64_t> have(std::size_t(report.shard_count), 0);
   for (const Input& in : inputs) have[std::size_t(in.shard.index)] = std::int64_t(in.rows);
@@ -561,29 +396,8 @@ MergeReport merge_results(const std::vector<std::string>& paths, const std::stri
     if (!report.ok()) return report;
   }
 
-  const std::string temp = merge_temp_path(output);
-  const fs::path parent = fs::path(output).parent_path();
-  if (!parent.empty()) fs::create_directories(parent);
-  // The merged file holds the shards' chunks, filtered alike: about the sum
-  // of their sizes. A merge that cannot fit is not begun.
-  std::uintmax_t bytes = 1u << 20;  // metadata
-  for (const Input& in : inputs) {
-    std::error_code size_ec;
-    const std::uintmax_t size = fs::file_size(in.path, size_ec);
-    if (!size_ec) bytes += size;
-  }
-  check_room(temp, bytes, "the merged file");
-  try {
-    write_merged(inputs, temp, report.runs_total, per_shard, options);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(temp, ec);
-    fs::remove(journal_path(temp), ec);
-    throw;
-  }
-  std::error_code ec;
-  fs::remove(journal_path(output), ec);  // none of this file's: a stale one would mask it
-  fs::rename(temp, output);
+  write_via_temp(inputs, output,
+                 [&](const std::string& temp) { write_merged(inputs, temp, report.runs_total, per_shard, options); });
   return report;
 }
 

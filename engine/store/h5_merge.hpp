@@ -27,10 +27,11 @@ struct MergeOptions {
 
 struct MergeReport {
   std::int64_t runs_total = 0, rows = 0;
-  std::int64_t missing = 0;                 // runs no shard holds
-  std::vector<std::int64_t> first_missing;  // the smallest of them (at most 10)
+  std::int64_t missing = 0;                 // runs no shard holds (a tune's: shards not given)
+  std::vector<std::int64_t> first_missing;  // the smallest of them (at most 10; none for a tune)
   std::vector<int> shards_to_rerun;         // shard indices holding missing runs
   int shard_count = 1;
+  bool tune = false;  // the shards of `chaosweep tune --shard` (engine/store/tune_merge.hpp)
   bool ok() const { return missing == 0; }
   std::string text() const;
 };
@@ -39,7 +40,7 @@ struct MergeReport {
 // output.partial, which belongs to a sweep of `output`).
 std::string merge_temp_path(const std::string& output);
 
-// Checks `inputs`; when every run is there, writes `output` (via
+// Checks `inputs` (a sweep's shards, or a tune's: tune_merge.hpp); when every run is there, writes `output` (via
 // merge_temp_path, renamed at the end). Throws std::runtime_error when the
 // inputs are not intact shards of one sweep, OutOfRoom (disk_room.hpp) when
 // the output cannot fit or a write of it fails; nothing is left of it then.
@@ -56,5 +57,8 @@ MergeReport merge_results(const std::vector<std::string>& inputs, const std::str
 // finished shards so: one of another sweep is damaged, not finished.
 // Returns what merge compares between shards: spec_hash and inputs_hash.
 std::string check_shard_file(const std::string& path, int index, int count, std::int64_t runs_total);
+// The same for shard `index` of `count` of a tune (`chaosweep tune --shard`),
+// whose rows are not known ahead: the tune must have finished.
+std::string check_tune_shard_file(const std::string& path, int index, int count);
 
 }  // namespace chaosweep

@@ -30,6 +30,10 @@ ClusterPlan read_cluster_plan(const fs::path& dir) {
   p.name = t["name"].value_or(std::string());
   const std::int64_t tasks = t["tasks"].value_or(std::int64_t(0));
   p.runs = t["runs"].value_or(std::int64_t(0));
+  const std::string kind = t["kind"].value_or(std::string("sweep"));
+  if (kind != "sweep" && kind != "tune")
+    throw std::runtime_error(file.string() + ": 'kind' must be \"sweep\" or \"tune\", not \"" + kind + "\"");
+  p.tune = kind == "tune";
   // chaosweep slurm writes 1 <= tasks <= runs, at most 1e6.
   if (tasks < 1 || tasks > 1000000)
     throw std::runtime_error(file.string() + ": 'tasks' must be in [1, 1000000], not " + std::to_string(tasks));
@@ -42,7 +46,11 @@ ClusterPlan read_cluster_plan(const fs::path& dir) {
 
 void write_cluster_plan(const fs::path& dir, const ClusterPlan& plan) {
   // toml++ writes the strings escaped, whatever characters a path or name holds.
-  const toml::table t{{"spec", plan.spec}, {"name", plan.name}, {"tasks", plan.tasks}, {"runs", plan.runs}};
+  const toml::table t{{"spec", plan.spec},
+                      {"name", plan.name},
+                      {"kind", plan.tune ? "tune" : "sweep"},
+                      {"tasks", plan.tasks},
+                      {"runs", plan.runs}};
   std::ofstream out(dir / "cluster.toml");
   out << "# written by chaosweep slurm; read by chaosweep status and chaosweep merge --slurm-dir\n" << t << "\n";
   out.close();

@@ -12,7 +12,8 @@ namespace chaosweep {
 struct ClusterPlan {
   std::string spec, name;  // the spec's absolute path and its name
   int tasks = 1;
-  std::int64_t runs = 0;
+  std::int64_t runs = 0;  // a tune's: at most so many (its rows are not known ahead)
+  bool tune = false;      // a tune's shards (`chaosweep tune --shard`), not a sweep's
 };
 
 // Throws std::runtime_error naming DIR/cluster.toml when it is missing or bad.

@@ -27,7 +27,13 @@ class StepRunner {
  public:
   StepRunner(const TuneSpec& tune, const BatchEvaluator& evaluator, const TuneOptions& opt, const TuneSink& sink,
              EnvironmentCache& cache, const std::vector<KnownRun>& known)
-      : tune_(tune), evaluator_(evaluator), opt_(opt), sink_(sink), cache_(cache), known_(known) {}
+      : tune_(tune),
+        evaluator_(evaluator),
+        opt_(opt),
+        sink_(sink),
+        cache_(cache),
+        known_(known),
+        case_runs_(tune.cases.size(), 0) {}
 
   bool run(const std::vector<Wanted>& wanted, std::vector<double>& costs) {
     costs.assign(wanted.size(), 0.0);
@@ -36,15 +42,17 @@ class StepRunner {
     for (std::size_t k = 0; k < wanted.size(); ++k) {
       const Wanted& w = wanted[k];
       const TuneCase& c = tune_.cases[w.case_index];
-      RunTuple t = resolve_run(next_, tune_run(tune_, c, *w.values, w.seed), cache_);
+      const std::int64_t run_id = tune_run_id(tune_.cases.size(), w.case_index, case_runs_[w.case_index]++);
+      RunTuple t = resolve_run(run_id, tune_run(tune_, c, *w.values, w.seed), cache_);
       t.race_round = w.round;
       t.config_id = w.config;
       if (next_ < std::int64_t(known_.size())) {
         const KnownRun& kr = known_[std::size_t(next_)];
-        if (kr.param_hash != param_hash(t.params, t.env_spec))
-          throw std::runtime_error("run_id " + std::to_string(next_) +
-                                   " is stored with other parameters than this tune makes it (param_hash differs): "
-                                   "the file was written by another spec or engine");
+        if (kr.run_id != run_id || kr.param_hash != param_hash(t.params, t.env_spec))
+          throw std::runtime_error("row " + std::to_string(next_) + " is stored as run_id " +
+                                   std::to_string(kr.run_id) + ", not as this tune makes it (run_id " +
+                                   std::to_string(run_id) + (kr.run_id == run_id ? ", param_hash differs" : "") +
+                                   "): the file was written by another spec, shard or engine");
         costs[k] = kr.cost;
       } else {
         fresh.push_back(std::move(t));
@@ -78,7 +86,8 @@ class StepRunner {
   const TuneSink& sink_;
   EnvironmentCache& cache_;
   const std::vector<KnownRun>& known_;
-  std::int64_t next_ = 0, stored_ = 0;
+  std::vector<std::int64_t> case_runs_;  // runs asked of each case so far
+  std::int64_t next_ = 0, stored_ = 0;   // rows asked for so far (stored or run), rows run
 };
 
 }  // namespace
@@ -92,13 +101,23 @@ std::uint64_t race_seed(const TuneSpec& tune, std::size_t index) {
   return splitmix64(s);
 }
 
+std::int64_t tune_most_rows(const TuneSpec& tune, bool grid, int shard_index, int shard_count) {
+  std::int64_t n = 0;
+  for (std::size_t i = 0; i < tune.cases.size(); ++i)
+    if (tune_case_in_shard(i, shard_index, shard_count))
+      n += tune.cases[i].budget + std::int64_t(tune.validation_seeds) * (grid ? 2 : 1);
+  return n;
+}
+
 TuneOutcome run_tune(const TuneSpec& tune, const BatchEvaluator& evaluator, const TuneOptions& opt,
                      const TuneSink& sink, EnvironmentCache& cache, const std::vector<KnownRun>& known) {
   TuneOutcome out;
   const std::size_t n = tune.cases.size();
   out.races.resize(n);
   out.chosen.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i)
+    if (tune_case_in_shard(i, opt.shard_index, opt.shard_count)) out.cases.push_back(i);
+  for (std::size_t i : out.cases) {
     const TuneCase& c = tune.cases[i];
     if (c.parameters.empty()) continue;
     std::vector<TuneParameter> own;
@@ -132,7 +151,7 @@ TuneOutcome run_tune(const TuneSpec& tune, const BatchEvaluator& evaluator, cons
   // without parameters: its one configuration, id 1) and any given beside it.
   static const std::vector<double> none;
   std::vector<Wanted> wanted;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i : out.cases) {
     const std::vector<double>* values = &none;
     out.chosen[i] = 1;
     if (out.races[i]) {

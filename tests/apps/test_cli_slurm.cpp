@@ -213,3 +213,33 @@ TEST(SlurmValues, ShellQuoteGivesBashBackTheSameWord) {
     EXPECT_EQ(read_file(out), s);
   }
 }
+
+// A tune spec's tasks each race their shard of the cases (`chaosweep tune
+// --shard K/N`); the merge script joins them into the whole tune's rows, and
+// status counts a finished tune shard as finished.
+TEST(CliSlurm, ATuneSpecsTasksRaceItsCasesAndTheMergeJoinsThem) {
+  TempDir tmp;
+  write_file(tmp.file("t.toml"), chaosweep::test::tiny_tune_spec());
+  const auto many = run_chaosweep("slurm " + tmp.file("t.toml") + " --tasks 4 -o " + tmp.file("run"));
+  EXPECT_EQ(many.exit_code, 2);
+  EXPECT_NE(many.err.find("more than the tune's 3 cases"), std::string::npos) << many.err;
+  EXPECT_FALSE(fs::exists(tmp.file("run")));
+  const auto w = run_chaosweep("slurm " + tmp.file("t.toml") + " --tasks 2 -o " + tmp.file("run"));
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  EXPECT_NE(w.out.find("a tune of at most"), std::string::npos) << w.out;
+  EXPECT_NE(read_file(tmp.file("run/sweep.sbatch")).find(" tune "), std::string::npos);
+  for (int k = 0; k < 2; ++k)
+    ASSERT_EQ(run_script(tmp.file("run/sweep.sbatch"),
+                         "SLURM_ARRAY_TASK_ID=" + std::to_string(k) + " SLURM_CPUS_PER_TASK=1", tmp.path().string()),
+              0)
+        << read_file(tmp.file("script.log"));
+  const auto st = run_chaosweep("status " + tmp.file("run"));
+  EXPECT_EQ(st.exit_code, 0) << st.out << st.err;
+  EXPECT_NE(st.out.find("tune '"), std::string::npos) << st.out;
+  EXPECT_NE(st.out.find("finished 2: 0,1"), std::string::npos) << st.out;
+  ASSERT_EQ(run_script(tmp.file("run/merge.sbatch"), "", tmp.path().string()), 0) << read_file(tmp.file("script.log"));
+  ASSERT_EQ(run_chaosweep("tune " + tmp.file("t.toml") + " -q -o " + tmp.file("single.h5")).exit_code, 0);
+  const auto cmp = run_chaosweep("compare " + tmp.file("run/results.h5") + " " + tmp.file("single.h5"));
+  EXPECT_EQ(cmp.exit_code, 0) << cmp.out << cmp.err;
+  EXPECT_NE(cmp.out.find("0 changed; 0 only in A, 0 only in B"), std::string::npos) << cmp.out;
+}

@@ -2,7 +2,8 @@
 // run an ordinary row (with race_round and config_id) that table, compare
 // and `run --from` read; the same file whatever --threads; kill -9 then
 // --resume losing nothing; bad [tune] input refused with nothing written; a
-// grid's best validated beside the tuner's choice.
+// grid's best validated beside the tuner's choice; shards of the cases that
+// merge into the whole tune.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -26,15 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Two cases of cheap map-zoning runs (10 m maps) and one without parameters.
-const std::string spec_text =
-    "[sweep]\nname = \"tiny_tune\"\n"
-    "[fixed]\nsize = 10\nsr = 1\nic_jitter = 1e-6\nmax_time = 600\n"
-    "[[part]]\nname = \"MZ\"\nfixed = { map_zoning = 1 }\n"
-    "case = [ { label = \"open\", env = \"no_obstacles\" }, { label = \"box\", env = \"one_square\" } ]\n"
-    "[[part]]\nname = \"plain\"\ncase = [ { label = \"plain\", env = \"no_obstacles\" } ]\n"
-    "[tune]\nbudget = 80\nseed = 1\nvalidation_seeds = 6\n"
-    "[tune.parameters]\nds_index = [1, 2, 3]\nc = { min = 0.05, max = 1 }\n"
-    "[tune.part.MZ]\nparameters = [\"ds_index\", \"c\"]\n[tune.part.plain]\nparameters = []\n";
+const std::string spec_text = chaosweep::test::tiny_tune_spec();
 
 std::string shell_quoted(const std::string& s) { return "'" + s + "'"; }
 
@@ -193,4 +186,76 @@ TEST(CliTune, SigintFinishesTheRunsInFlightExits130AndResumes) {
   ASSERT_EQ(run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(cut) + " --resume -q").exit_code, 0);
   const auto cmp = run_chaosweep("compare " + shell_quoted(whole) + " " + shell_quoted(cut));
   EXPECT_TRUE(has(cmp.out, "0 changed; 0 only in A, 0 only in B")) << cmp.out;
+}
+
+// --shard K/N races the cases i with i % N == K; merge joins the shards into
+// the whole tune's rows, and refuses a missing, unfinished or foreign shard.
+TEST(CliTune, ShardsOfTheCasesMergeIntoTheWholeTune) {
+  TempDir tmp;
+  const std::string spec = tmp.file("t.toml"), whole = tmp.file("whole.h5"), merged = tmp.file("merged.h5");
+  write_file(spec, spec_text);
+  ASSERT_EQ(run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(whole) + " -q").exit_code, 0);
+  std::vector<std::string> shard(2);
+  for (int k = 0; k < 2; ++k) {
+    shard[k] = tmp.file("s" + std::to_string(k) + ".h5");
+    const auto r = run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(shard[k]) + " --shard " +
+                                 std::to_string(k) + "/2 --threads " + std::to_string(k + 1));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(has(r.out, "shard " + std::to_string(k) + "/2")) << r.out;
+    EXPECT_EQ(read_attribute(shard[k], "shard"), std::to_string(k) + "/2");
+  }
+  const std::vector<std::string> labels = read_text_column(shard[0], "label");
+  const std::set<std::string> first(labels.begin(), labels.end());
+  EXPECT_EQ(first, (std::set<std::string>{"open", "plain"}));  // cases 0 and 2
+  // One shard alone: nothing written, the missing one named.
+  const auto one = run_chaosweep("merge -o " + shell_quoted(merged) + " " + shell_quoted(shard[1]));
+  EXPECT_EQ(one.exit_code, 1) << one.err;
+  EXPECT_TRUE(has(one.out, "missing shards 0 of 2")) << one.out;
+  EXPECT_TRUE(has(one.out, "chaosweep tune SPEC -o OUT --shard 0/2 --resume")) << one.out;
+  EXPECT_FALSE(fs::exists(merged));
+  const auto m =
+      run_chaosweep("merge -o " + shell_quoted(merged) + " " + shell_quoted(shard[1]) + " " + shell_quoted(shard[0]));
+  ASSERT_EQ(m.exit_code, 0) << m.out << m.err;
+  const auto cmp = run_chaosweep("compare " + shell_quoted(whole) + " " + shell_quoted(merged));
+  EXPECT_EQ(cmp.exit_code, 0) << cmp.out << cmp.err;
+  EXPECT_TRUE(has(cmp.out, "0 changed; 0 only in A, 0 only in B")) << cmp.out;
+  EXPECT_EQ(read_attribute(merged, "runs_total"), std::to_string(count_rows(whole)));
+  EXPECT_EQ(read_attribute(merged, "kind"), "tune");
+  const auto t = run_chaosweep("table tune " + shell_quoted(merged));
+  EXPECT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_EQ(t.out, run_chaosweep("table tune " + shell_quoted(whole)).out);
+  // A sweep's shard is not a tune's; a tune's whole file is not a shard of 2.
+  const std::string sweep_spec = tmp.file("s.toml"), sweep = tmp.file("sweep.h5");
+  write_file(sweep_spec, chaosweep::test::small_spec_18_runs("other"));
+  ASSERT_EQ(run_chaosweep("sweep " + shell_quoted(sweep_spec) + " -q --shard 1/2 -o " + shell_quoted(sweep)).exit_code,
+            0);
+  const auto mixed = run_chaosweep("merge -o " + shell_quoted(tmp.file("x.h5")) + " " + shell_quoted(shard[0]) + " " +
+                                   shell_quoted(sweep));
+  EXPECT_EQ(mixed.exit_code, 2);
+  EXPECT_TRUE(has(mixed.err, "not both a tune's shards")) << mixed.err;
+  const auto other = run_chaosweep("merge -o " + shell_quoted(tmp.file("x.h5")) + " " + shell_quoted(shard[0]) + " " +
+                                   shell_quoted(whole));
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_TRUE(has(other.err, "shards")) << other.err;
+  EXPECT_FALSE(fs::exists(tmp.file("x.h5")));
+  // More shards than cases: each shard races whole cases.
+  const auto many =
+      run_chaosweep("tune " + shell_quoted(spec) + " -o " + shell_quoted(tmp.file("y.h5")) + " --shard 0/4");
+  EXPECT_EQ(many.exit_code, 2);
+  EXPECT_TRUE(has(many.err, "--shard: 0/4")) << many.err;
+  EXPECT_TRUE(has(many.err, "give N in [1, 3]")) << many.err;
+  EXPECT_FALSE(fs::exists(tmp.file("y.h5.partial")));
+}
+
+// An unfinished shard (its OUT.partial, given by hand) is refused by name.
+TEST(CliTune, AnUnfinishedTuneShardIsNotMerged) {
+  TempDir tmp;
+  const Interrupted t = interrupted_tune(tmp, SIGKILL);
+  const std::string partial = t.cut + ".partial";
+  ASSERT_TRUE(fs::exists(partial));
+  const auto m = run_chaosweep("merge -o " + shell_quoted(tmp.file("m.h5")) + " " + shell_quoted(partial));
+  EXPECT_EQ(m.exit_code, 2);
+  EXPECT_TRUE(has(m.err, "is not a finished tune")) << m.err;
+  EXPECT_TRUE(has(m.err, "--resume")) << m.err;
+  EXPECT_FALSE(fs::exists(tmp.file("m.h5")));
 }

@@ -243,27 +243,38 @@ struct Collected {
   TuneOutcome outcome;
 };
 
-Collected tune_rows(const TuneSpec& t, const BatchEvaluator& ev, const std::vector<KnownRun>& known = {}) {
+Collected tune_rows(const TuneSpec& t, const BatchEvaluator& ev, const std::vector<KnownRun>& known = {},
+                    int shard_index = 0, int shard_count = 1) {
   Collected c;
   EnvironmentCache cache;
+  TuneOptions opt;
+  opt.shard_index = shard_index;
+  opt.shard_count = shard_count;
   c.outcome = run_tune(
-      t, ev, {}, [&](const std::vector<RunRow>& rows) { c.rows.insert(c.rows.end(), rows.begin(), rows.end()); }, cache,
-      known);
+      t, ev, opt, [&](const std::vector<RunRow>& rows) { c.rows.insert(c.rows.end(), rows.begin(), rows.end()); },
+      cache, known);
   return c;
+}
+
+KnownRun known_run(const RunRow& r) {
+  return {r.tuple.run_id, param_hash(r.tuple.params, r.tuple.env_spec), tune_cost(r.result)};
 }
 
 }  // namespace
 
-TEST(TuneRunner, RowsAreTheSameOnOneThreadOrTwoAndRunIdsFollowOn) {
+TEST(TuneRunner, RowsAreTheSameOnOneThreadOrTwoAndRunIdsCountEachCasesRuns) {
   const TuneSpec t = parse(two_parts + tune_ok);
   const Collected one = tune_rows(t, SerialBatchEvaluator());
   const Collected two = tune_rows(t, ThreadBatchEvaluator(2, best_simd_target()));
   ASSERT_EQ(one.rows.size(), two.rows.size());
   ASSERT_GT(one.rows.size(), 80u);
-  std::set<std::int64_t> validation_configs;
+  std::map<std::string, std::int64_t> runs_of;  // per case label
+  const std::map<std::string, std::int64_t> index{{"open", 0}, {"box", 1}, {"plain", 2}};
   for (std::size_t k = 0; k < one.rows.size(); ++k) {
     const RunRow &a = one.rows[k], &b = two.rows[k];
-    EXPECT_EQ(a.tuple.run_id, std::int64_t(k));
+    // The case's k-th run: case + cases * k.
+    EXPECT_EQ(a.tuple.run_id, index.at(a.tuple.label) + 3 * runs_of[a.tuple.label]++);
+    EXPECT_EQ(a.tuple.run_id, b.tuple.run_id);
     EXPECT_EQ(param_hash(a.tuple.params, a.tuple.env_spec), param_hash(b.tuple.params, b.tuple.env_spec));
     EXPECT_EQ(a.tuple.race_round, b.tuple.race_round);
     EXPECT_EQ(a.tuple.config_id, b.tuple.config_id);
@@ -291,9 +302,7 @@ TEST(TuneRunner, AReplayFromStoredRowsRunsOnlyWhatTheyLackAndRefusesOtherRows) {
   const Collected full = tune_rows(t, SerialBatchEvaluator());
   // The first 37 rows stored (a kill mid-step): the replay runs the rest, the same.
   std::vector<KnownRun> known;
-  for (std::size_t k = 0; k < 37; ++k)
-    known.push_back(
-        {param_hash(full.rows[k].tuple.params, full.rows[k].tuple.env_spec), tune_cost(full.rows[k].result)});
+  for (std::size_t k = 0; k < 37; ++k) known.push_back(known_run(full.rows[k]));
   const Collected rest = tune_rows(t, SerialBatchEvaluator(), known);
   ASSERT_EQ(rest.rows.size(), full.rows.size() - 37);
   for (std::size_t k = 0; k < rest.rows.size(); ++k) {
@@ -305,6 +314,42 @@ TEST(TuneRunner, AReplayFromStoredRowsRunsOnlyWhatTheyLackAndRefusesOtherRows) {
     tune_rows(t, SerialBatchEvaluator(), known);
     ADD_FAILURE() << "a stored row of other parameters was taken";
   } catch (const std::runtime_error& e) {
-    EXPECT_TRUE(has(e.what(), "run_id 20")) << e.what();
+    EXPECT_TRUE(has(e.what(), "row 20 is stored as run_id " + std::to_string(known[20].run_id))) << e.what();
+    EXPECT_TRUE(has(e.what(), "param_hash differs")) << e.what();
   }
+  known[20] = known_run(full.rows[20]);
+  known[21].run_id += 3;  // another shard's, or another case's run
+  try {
+    tune_rows(t, SerialBatchEvaluator(), known);
+    ADD_FAILURE() << "a stored row of another run_id was taken";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(has(e.what(), "row 21 is stored as run_id")) << e.what();
+  }
+}
+
+// The cases race independently: shards 0/2 and 1/2 race cases {0, 2} and
+// {1}, and their rows, run_ids and choices are the whole tune's.
+TEST(TuneRunner, AShardOfTheCasesGivesTheWholeTunesRowsForThem) {
+  const TuneSpec t = parse(two_parts + tune_ok);
+  const Collected whole = tune_rows(t, SerialBatchEvaluator());
+  std::map<std::int64_t, const RunRow*> by_id;
+  for (const RunRow& r : whole.rows) by_id[r.tuple.run_id] = &r;
+  std::size_t rows = 0;
+  for (int k = 0; k < 2; ++k) {
+    const Collected part = tune_rows(t, ThreadBatchEvaluator(2, best_simd_target()), {}, k, 2);
+    EXPECT_EQ(part.outcome.cases, (k == 0 ? std::vector<std::size_t>{0, 2} : std::vector<std::size_t>{1}));
+    for (std::size_t i : part.outcome.cases) EXPECT_EQ(part.outcome.chosen[i], whole.outcome.chosen[i]);
+    for (const RunRow& r : part.rows) {
+      ASSERT_TRUE(by_id.count(r.tuple.run_id)) << r.tuple.run_id;
+      const RunRow& w = *by_id[r.tuple.run_id];
+      EXPECT_EQ(int(r.tuple.run_id % 3) % 2, k);  // its case i = run_id % 3, and i % 2 == k
+      EXPECT_EQ(r.tuple.label, w.tuple.label);
+      EXPECT_EQ(param_hash(r.tuple.params, r.tuple.env_spec), param_hash(w.tuple.params, w.tuple.env_spec));
+      EXPECT_EQ(r.tuple.race_round, w.tuple.race_round);
+      EXPECT_EQ(r.tuple.config_id, w.tuple.config_id);
+      EXPECT_EQ(r.result.steps, w.result.steps);
+    }
+    rows += part.rows.size();
+  }
+  EXPECT_EQ(rows, whole.rows.size());
 }

@@ -94,4 +94,15 @@ std::string small_spec_18_runs(const std::string& name) {
          "2, 3]\n";
 }
 
+std::string tiny_tune_spec() {
+  return "[sweep]\nname = \"tiny_tune\"\n"
+         "[fixed]\nsize = 10\nsr = 1\nic_jitter = 1e-6\nmax_time = 600\n"
+         "[[part]]\nname = \"MZ\"\nfixed = { map_zoning = 1 }\n"
+         "case = [ { label = \"open\", env = \"no_obstacles\" }, { label = \"box\", env = \"one_square\" } ]\n"
+         "[[part]]\nname = \"plain\"\ncase = [ { label = \"plain\", env = \"no_obstacles\" } ]\n"
+         "[tune]\nbudget = 80\nseed = 1\nvalidation_seeds = 6\n"
+         "[tune.parameters]\nds_index = [1, 2, 3]\nc = { min = 0.05, max = 1 }\n"
+         "[tune.part.MZ]\nparameters = [\"ds_index\", \"c\"]\n[tune.part.plain]\nparameters = []\n";
+}
+
 }  // namespace chaosweep::test

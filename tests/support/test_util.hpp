@@ -35,5 +35,9 @@ void write_foreign_file(const std::string& path, const std::string& what);
 
 // A spec of 18 cheap runs (3 A x 2 B x 3 DSindex on a 12 m map) named `name`.
 std::string small_spec_18_runs(const std::string& name);
+// A tune of three cases on 10 m maps: two map-zoning cases racing ds_index
+// and c ("open", "box"; budget 80, 6 validation seeds) and one without
+// parameters ("plain").
+std::string tiny_tune_spec();
 
 }  // namespace chaosweep::test

@@ -13,13 +13,15 @@ namespace {
 
 std::string shard_text(Shard shard) { return std::to_string(shard.index) + "/" + std::to_string(shard.count); }
 
-// The runs `partial` holds, which must be the shard's first ones.
-std::int64_t runs_to_skip(const std::string& partial, const SweepInputs& inputs, Shard shard) {
+// The runs `partial` holds, which must be the shard's first ones (when
+// `strided`: a sweep's, K, K + N, ...).
+std::int64_t runs_to_skip(const std::string& partial, const SweepInputs& inputs, Shard shard, bool strided) {
   check_same_inputs(partial, inputs);
   if (read_attribute(partial, "shard") != shard_text(shard))
     throw std::runtime_error(partial + " holds shard " + read_attribute(partial, "shard") + ", not " +
                              shard_text(shard));
   const auto ids = read_i64_column(partial, "run_id");
+  if (!strided) return std::int64_t(ids.size());
   for (std::size_t j = 0; j < ids.size(); ++j)
     if (ids[j] != shard_run_id(std::int64_t(j), shard.index, shard.count))
       throw std::runtime_error(partial + ": row " + std::to_string(j) + " has run_id " + std::to_string(ids[j]) +
@@ -29,7 +31,8 @@ std::int64_t runs_to_skip(const std::string& partial, const SweepInputs& inputs,
 
 }  // namespace
 
-SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs, Shard shard) {
+SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs, Shard shard,
+                              bool strided) {
   namespace fs = std::filesystem;
   const std::string partial = out + ".partial";
   SweepStart start;
@@ -46,7 +49,7 @@ SweepStart start_sweep_output(const std::string& out, bool resume, bool force, c
     throw std::runtime_error(partial +
                              " exists (an interrupted sweep): pass --resume to continue it, "
                              "or --force to start over");
-  if (start.resuming) start.skip = runs_to_skip(partial, inputs, shard);
+  if (start.resuming) start.skip = runs_to_skip(partial, inputs, shard, strided);
   return start;
 }
 

@@ -20,7 +20,10 @@ struct SweepStart {
 
 // Checks `out` (and `out`.partial) against --resume/--force, locks it, and
 // for a resume checks that the partial file holds this spec's inputs and
-// this shard's first runs. Throws std::runtime_error (bad input) otherwise.
-SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs, Shard shard);
+// this shard's first runs: a sweep's run_ids K, K + N, ... when `strided`
+// (a tune's run_ids are checked by its replay). Throws std::runtime_error
+// (bad input) otherwise.
+SweepStart start_sweep_output(const std::string& out, bool resume, bool force, const SweepInputs& inputs, Shard shard,
+                              bool strided = true);
 
 }  // namespace chaosweep
