@@ -33,6 +33,8 @@ const std::map<std::string, std::string>& measured() {
       {"final_ds_index", "final ds_index"},
       {"subgoals", "sub-goals"},
       {"reflections", "reflections (count)"},
+      {"visit_evenness", "evenness of cell visits (Pielou, 0-1)"},
+      {"turn_entropy", "turn entropy between cell entries (bits)"},
       {"race_round", "race round"},
       {"config_id", "configuration"},
       {"wall_time", "wall time (s)"},

@@ -79,6 +79,8 @@ std::vector<Column> make_columns() {
   c.push_back(i64("final_ds_index", [](const RunRow& r) { return std::int64_t(r.result.final_ds_index); }));
   c.push_back(i64("subgoals", [](const RunRow& r) { return r.result.subgoals; }));
   c.push_back(i64("reflections", [](const RunRow& r) { return r.result.reflections; }));
+  c.push_back(f64("visit_evenness", [](const RunRow& r) { return r.result.visit_evenness; }));
+  c.push_back(f64("turn_entropy", [](const RunRow& r) { return r.result.turn_entropy; }));
   c.push_back(i64("race_round", [](const RunRow& r) { return r.tuple.race_round; }));
   c.push_back(i64("config_id", [](const RunRow& r) { return r.tuple.config_id; }));
   c.push_back(text("message", variable, [](const RunRow& r) { return r.result.message; }));

@@ -37,6 +37,33 @@ CoverageGrid::CoverageGrid(const Environment& env, double cell_size)
                 cells_.begin() + std::ptrdiff_t(j * std::size_t(nx_) + i1), blocked);
   }
   free_ = int(std::count(cells_.begin(), cells_.end(), unvisited));
+  visits_.assign(cells_.size(), 0);
+}
+
+double visit_evenness(const CoverageGrid& g) {
+  if (g.free_cells() < 2) return 0.0;
+  const auto& v = g.visits();
+  const auto free_visits = [&](auto&& add) {
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i)
+        if (g.at(i, j) != CoverageGrid::blocked) add(double(v[std::size_t(j) * std::size_t(g.nx()) + std::size_t(i)]));
+  };
+  double total = 0, h = 0;
+  free_visits([&](double n) { total += n; });
+  if (total == 0) return 0.0;
+  free_visits([&](double n) {
+    if (n > 0) h -= (n / total) * std::log(n / total);
+  });
+  return h / std::log(double(g.free_cells()));
+}
+
+double turn_entropy(const CoverageGrid& g) {
+  const std::int64_t* t = g.turns();
+  const double total = double(t[0] + t[1] + t[2] + t[3]);
+  double h = 0;
+  for (int k = 0; k < 4; ++k)
+    if (t[k] > 0) h -= (double(t[k]) / total) * std::log2(double(t[k]) / total);
+  return total > 0 ? h : 0.0;
 }
 
 void CoverageGrid::count_regions(std::shared_ptr<const std::vector<int>> region_of_cell, int regions) {

@@ -33,6 +33,7 @@ class CoverageGrid {
 
   void mark_cell(int i, int j) {
     const std::size_t k = std::size_t(j) * nx_ + i;
+    if (long(k) != current_) enter(long(k), i, j);
     std::uint8_t& c = cells_[k];
     if (!stamp_.empty() && c != blocked && stamp_[k] != window_) {
       stamp_[k] = window_;
@@ -88,7 +89,39 @@ class CoverageGrid {
     else if (di != 0 || dj != 0) mark_crossing(x0, y0, x1, y1);
   }
 
+  // Path metrics (docs/spec.md §1, "Path metrics"), counted as cells are
+  // marked, so every planner has them: each entry into a cell other than
+  // the last one marked is a visit of it, and the direction of the move
+  // between them (east, north, west, south: 0-3, the longer axis of a jump)
+  // turns against the last one's by (dir - last) mod 4: straight, left,
+  // back, right.
+  const std::vector<std::uint32_t>& visits() const { return visits_; }
+  const std::int64_t* turns() const { return turns_; }
+  // For the lane integrators, which count their entries in place
+  // (LaneArrays::visits, turns, last_dir) and hand the entry state back.
+  std::uint32_t* visit_counts() { return visits_.data(); }
+  std::int64_t* turn_counts() { return turns_; }
+  int last_direction() const { return last_dir_; }
+  void set_entry_state(long cell, int last_direction) {
+    current_ = cell;
+    ci_ = int(cell % nx_);
+    cj_ = int(cell / nx_);
+    last_dir_ = last_direction;
+  }
+
  private:
+  void enter(long k, int i, int j) {
+    ++visits_[std::size_t(k)];
+    if (current_ >= 0) {
+      const int di = i - ci_, dj = j - cj_;
+      const int dir = (di < 0 ? -di : di) >= (dj < 0 ? -dj : dj) ? (di > 0 ? 0 : 2) : (dj > 0 ? 1 : 3);
+      if (last_dir_ >= 0) ++turns_[(dir - last_dir_) & 3];
+      last_dir_ = dir;
+    }
+    current_ = k;
+    ci_ = i;
+    cj_ = j;
+  }
   void mark_crossing(double x0, double y0, double x1, double y1);
   static int clamp_index(double g, int n) {
     if (!(g > 0.0)) return 0;  // also maps NaN to 0; callers reject NaN first
@@ -104,6 +137,19 @@ class CoverageGrid {
   int window_distinct_ = 0;
   std::shared_ptr<const std::vector<int>> region_;  // see count_regions
   std::vector<int> region_visited_;
+  std::vector<std::uint32_t> visits_;  // entries per cell (see visits())
+  std::int64_t turns_[4] = {0, 0, 0, 0};
+  long current_ = -1;  // the cell marked last (-1: none yet), at (ci_, cj_)
+  int ci_ = 0, cj_ = 0, last_dir_ = -1;
 };
+
+// Pielou's evenness of the visits over the free cells: the Shannon entropy
+// of their shares (a cell never visited has none) over ln(free cells), in
+// [0, 1]; 1 when every free cell was entered equally often. 0 for a grid of
+// one free cell.
+double visit_evenness(const CoverageGrid& g);
+// Shannon entropy (bits, in [0, 2]) of the turns between successive cell
+// entries (straight, left, back, right); 0 with no turn counted.
+double turn_entropy(const CoverageGrid& g);
 
 }  // namespace chaosweep

@@ -143,6 +143,8 @@ struct RunResult {
   int final_ds_index = 0;
   std::int64_t subgoals = 0;     // Chebyshev sub-goals reached
   std::int64_t reflections = 0;  // seed 003 mirror mapping; seed 002 bumps
+  double visit_evenness = 0.0;   // Pielou evenness of cell entries over free cells (visit_evenness)
+  double turn_entropy = 0.0;     // bits per turn between cell entries (turn_entropy)
   double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
   std::string message;           // why a run is invalid / errored
 };

@@ -55,6 +55,12 @@ struct LaneArrays {
   int window_distinct[max_lanes];
   const int* region[max_lanes];
   int* region_visited[max_lanes];
+  // The path metrics' counts (CoverageGrid::visits, turns): an entered step
+  // is a visit of the cell entered and a turn from the lane's last entry
+  // direction (last_dir, -1: none yet), counted in place.
+  std::uint32_t* visits[max_lanes];
+  std::int64_t* turns[max_lanes];
+  int last_dir[max_lanes];
   // Maps with obstacles: the cells Eq. 8 leaves alone (cells_clear_of_obstacles;
   // nullptr: no obstacles). A step is applied only when it ends in such a
   // cell; the lane keeps whether its cell and its four neighbours are

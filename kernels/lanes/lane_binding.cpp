@@ -66,6 +66,8 @@ void LaneBinding::write_lane(LaneArrays& a, int l) {
   a.window[l] = run_.grid_.window();
   a.region[l] = run_.grid_.region_of_cell();
   a.region_visited[l] = run_.grid_.region_visited_counts();
+  a.visits[l] = run_.grid_.visit_counts();
+  a.turns[l] = run_.grid_.turn_counts();
   lane_cell(a, l);
   a.needed[l] = double(run_.needed_);
   if (!run_.env_.obstacles.empty() && clear_.empty())
@@ -79,6 +81,7 @@ void LaneBinding::lane_cell(LaneArrays& a, int l) const {
   a.cell_j[l] = run_.grid_.cell_y(run_.robot_.y());
   a.cell_k[l] = long(a.cell_j[l]) * run_.grid_.nx() + long(a.cell_i[l]);
   a.window_distinct[l] = run_.grid_.window_distinct();
+  a.last_dir[l] = run_.grid_.last_direction();
 }
 
 void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
@@ -88,6 +91,7 @@ void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
   run_.seg_step_ = int(a.seg_step[l]);
   run_.grid_.set_visited_cells(int(a.visited[l]));
   run_.grid_.set_window_distinct(a.window_distinct[l]);
+  run_.grid_.set_entry_state(a.cell_k[l], a.last_dir[l]);
   run_.last_visited_ = run_.grid_.visited_cells();
   run_.t_last_new_ = a.t_last_new[l];
 }

@@ -93,6 +93,9 @@ class LaneDriver final : public LaneSink {
     a_.window_distinct[l] = 0;
     a_.region[l] = nullptr;
     a_.region_visited[l] = nullptr;
+    a_.visits[l] = nullptr;
+    a_.turns[l] = nullptr;
+    a_.last_dir[l] = -1;
     a_.clear[l] = nullptr;
     a_.clear_here[l] = a_.clear_left[l] = a_.clear_right[l] = a_.clear_down[l] = a_.clear_up[l] = 0.0;
     a_.visited[l] = 0.0;

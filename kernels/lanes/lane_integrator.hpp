@@ -144,6 +144,13 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
       if (a.cells[l][left] != 2 && stamp[left] != w) stamp[left] = w, ++a.window_distinct[l];  // 2: blocked
       if (stamp[k] != w) stamp[k] = w, ++a.window_distinct[l];
     }
+    // A visit and a turn, as CoverageGrid::enter counts them: the cell left
+    // is the one marked last, an edge away (east, north, west, south).
+    ++a.visits[l][k];
+    const long step = k - a.cell_k[l];
+    const int dir = step == 1 ? 0 : step == -1 ? 2 : step > 0 ? 1 : 3;
+    if (a.last_dir[l] >= 0) ++a.turns[l][(dir - a.last_dir[l]) & 3];
+    a.last_dir[l] = dir;
     a.cell_k[l] = k;
     if (c != 0) continue;  // visited already (a cell clear of obstacles is not blocked)
     c = 1;

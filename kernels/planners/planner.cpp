@@ -66,6 +66,8 @@ bool prepare_run(const RunParams& p, const Environment& env, std::optional<Cover
 void conclude_run(const RunParams& p, const CoverageGrid& grid, RunResult& r) {
   r.visited_cells = grid.visited_cells();
   r.final_coverage = coverage_rate(p, grid, grid.visited_cells());
+  r.visit_evenness = visit_evenness(grid);
+  r.turn_entropy = turn_entropy(grid);
   if (r.status == Status::ok) r.pr = r.coverage_time / r.t_opt;
 }
 

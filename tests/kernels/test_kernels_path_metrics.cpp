@@ -1,0 +1,92 @@
+// Kernels: the path metrics every planner gets from the coverage grid
+// (docs/spec.md §1, "Path metrics"): visits counted per cell entry, turns
+// between successive entries, Pielou's evenness of the visits over the free
+// cells and the entropy of the turns, on hand-made paths whose values are
+// known, and on runs of the planners.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "kernels/core/coverage_grid.hpp"
+#include "kernels/planners/planner.hpp"
+#include "tests/support/kernel_test_util.hpp"
+
+using namespace chaosweep;
+using chaosweep::test::small_run;
+using chaosweep::test::square_map;
+
+namespace {
+
+// Marks the cells (i, j) in order, as a planner's moves would.
+void walk(CoverageGrid& g, const std::vector<std::pair<int, int>>& cells) {
+  for (const auto& [i, j] : cells) g.mark_cell(i, j);
+}
+
+}  // namespace
+
+TEST(PathMetrics, EachCellOnceInALawnmowerIsPerfectlyEvenWithTwoKindsOfTurn) {
+  const Environment env = square_map(4.0);
+  CoverageGrid g(env, 1.0);
+  // Boustrophedon over 4 x 4: east along row 0, north, west along row 1, ...
+  std::vector<std::pair<int, int>> path;
+  for (int j = 0; j < 4; ++j)
+    for (int k = 0; k < 4; ++k) path.push_back({j % 2 == 0 ? k : 3 - k, j});
+  walk(g, path);
+  for (std::uint32_t v : g.visits()) EXPECT_EQ(v, 1u);
+  EXPECT_DOUBLE_EQ(visit_evenness(g), 1.0);
+  // 15 moves, 14 turns: per row change left, left (rows 0->1) or right,
+  // right (1->2), 3 x 2 = 6 turns; straight 8.
+  const std::int64_t* t = g.turns();
+  EXPECT_EQ(t[0], 8);  // straight
+  EXPECT_EQ(t[1], 4);  // left: E->N, N->W, then at row 2->3 again
+  EXPECT_EQ(t[2], 0);  // back
+  EXPECT_EQ(t[3], 2);  // right: W->N, N->E
+  const double p[] = {8.0 / 14, 4.0 / 14, 2.0 / 14};
+  double h = 0;
+  for (double q : p) h -= q * std::log2(q);
+  EXPECT_NEAR(turn_entropy(g), h, 1e-15);
+}
+
+TEST(PathMetrics, StayingInACellIsNoVisitAndAStraightLineHasNoTurnEntropy) {
+  const Environment env = square_map(4.0);
+  CoverageGrid g(env, 1.0);
+  walk(g, {{0, 0}, {0, 0}, {1, 0}, {1, 0}, {1, 0}, {2, 0}, {3, 0}});
+  EXPECT_EQ(g.visits()[0], 1u);
+  EXPECT_EQ(g.visits()[1], 1u);
+  EXPECT_EQ(g.turns()[0], 2);  // E, E, E: two straight turns
+  EXPECT_DOUBLE_EQ(turn_entropy(g), 0.0);
+  // Back and forth between two cells: every turn is back.
+  CoverageGrid b(env, 1.0);
+  walk(b, {{0, 0}, {1, 0}, {0, 0}, {1, 0}, {0, 0}});
+  EXPECT_EQ(b.visits()[0], 3u);
+  EXPECT_EQ(b.visits()[1], 2u);
+  EXPECT_EQ(b.turns()[2], 3);
+  EXPECT_DOUBLE_EQ(turn_entropy(b), 0.0);
+  // Two cells of 16 visited 3 and 2 times: H = -(0.6 ln 0.6 + 0.4 ln 0.4), J = H / ln 16.
+  EXPECT_NEAR(visit_evenness(b), -(0.6 * std::log(0.6) + 0.4 * std::log(0.4)) / std::log(16.0), 1e-15);
+}
+
+TEST(PathMetrics, BlockedCellsAreNotInTheEvennessAndAJumpTakesItsLongerAxis) {
+  // The obstacle's centre cells (1..2, 1..2) are blocked: 12 free cells.
+  const Environment env = square_map(4.0, {{1, 1, 3, 3}});
+  CoverageGrid g(env, 1.0);
+  ASSERT_EQ(g.free_cells(), 12);
+  walk(g, {{0, 0}, {3, 1}, {3, 3}, {0, 3}});  // jumps: east (3 > 1), north, west
+  EXPECT_EQ(g.turns()[1], 2);                 // E->N, N->W: left, left
+  EXPECT_NEAR(visit_evenness(g), std::log(4.0) / std::log(12.0), 1e-15);
+}
+
+TEST(PathMetrics, EveryPlannerReportsThemInItsResult) {
+  for (Planner planner :
+       {Planner::arnold, Planner::logistic, Planner::chebyshev, Planner::bouncing, Planner::contraction}) {
+    RunParams p = small_run();
+    p.planner = planner;
+    const RunResult r = run_planner(p, square_map(p.size_x));
+    ASSERT_NE(r.status, Status::invalid) << r.message;
+    EXPECT_GT(r.visit_evenness, 0.3) << to_string(planner);
+    EXPECT_LT(r.visit_evenness, 1.0) << to_string(planner);
+    EXPECT_GT(r.turn_entropy, 0.1) << to_string(planner);
+    EXPECT_LE(r.turn_entropy, 2.0) << to_string(planner);
+  }
+}
