@@ -54,7 +54,7 @@ void add_param_flags(CLI::App& app, std::map<std::string, std::string>& raw) {
   add("env", "environment: \"empty\", a name from experiments/envs, or a .toml path", "NAME|FILE");
   add("size", "map side, m (both axes), or X,Y", "L|X,Y");
   add("start", "start point X,Y, m (default: the environment's start, else 0.5,0.5)", "X,Y");
-  add("ic", "Arnold initial state x,y,z (default 0,1,0)", "X,Y,Z");
+  add("ic", "initial state x,y,z of the chaotic system (default: the system's; Arnold 0,1,0)", "X,Y,Z");
   RunParams defaults;
   for (const ParamInfo& p : param_table()) {
     std::string help(p.help);

@@ -1,6 +1,5 @@
 // `chaosweep run`: one run from flags, or a stored row re-run (--from).
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <limits>
@@ -23,9 +22,17 @@ void print_readable(const RunRow& row) {
   const RunParams& p = row.tuple.params;
   const RunResult& r = row.result;
   const auto n = [](double v) { return format_number(v); };
-  std::printf("planner         %s  (A=%s B=%s C=%s, ds_index %d, f %s, %s, %s)\n", to_string(p.planner), n(p.A).c_str(),
-              n(p.B).c_str(), n(p.C).c_str(), p.ds_index, n(p.f).c_str(), to_string(p.integrator),
-              to_string(p.boundary));
+  // The system's coefficients: A, B, C, or a flow's by their names.
+  std::string coeffs = "A=" + n(p.A) + " B=" + n(p.B) + " C=" + n(p.C);
+  if (p.system != arnold_system) {
+    const FlowDefaults d = system_defaults(p.system);
+    const FlowCoeffs<double> k = flow_coeffs(p);
+    const double used[] = {k.a, k.b, k.c, k.d};
+    coeffs = std::string(system_name(p.system));
+    for (int i = 0; i < d.count; ++i) coeffs.append(" ").append(d.names[i]).append("=").append(n(used[i]));
+  }
+  std::printf("planner         %s  (%s, ds_index %d, f %s, %s, %s)\n", to_string(p.planner), coeffs.c_str(), p.ds_index,
+              n(p.f).c_str(), to_string(p.integrator), to_string(p.boundary));
   std::printf("map             %s, %s x %s m, sr %s m, start (%s, %s)\n", row.tuple.env_spec.c_str(),
               n(p.size_x).c_str(), n(p.size_y).c_str(), n(p.sr).c_str(), n(p.start_x).c_str(), n(p.start_y).c_str());
   std::printf("status          %s\n", to_string(r.status));

@@ -23,7 +23,8 @@ long naive_original_arnold(const RunParams& p, const Environment& env) {
   CoverageGrid grid(env, p.sr);
   const long needed = cells_needed(p.dc, grid.free_cells());
   const double budget = p.max_time;
-  State s{p.ic_x, p.ic_y, p.ic_z};
+  const Vec3<double> ic = system_ic(p);
+  State s{ic.x, ic.y, ic.z};
   double X = p.start_x, Y = p.start_y, t = 0;
   const double h = p.dt;
   long steps = 0;

@@ -64,7 +64,8 @@ std::uint64_t fnv1a64(const std::string& bytes) {
   return f.h;
 }
 
-// The hash of "env=ENV;" then "NAME=%a;" per parameter, in table order.
+// The hash of "env=ENV;" then "NAME=%a;" per parameter, in table order
+// (a parameter not hashed_at_default only when it differs from its default).
 // FNV-1a is a chain (each byte waits for the last), so a thread keeps its
 // previous run's values and the state before each parameter: runs of one
 // sweep differ in a few axes, and the hash resumes at the first parameter
@@ -78,6 +79,11 @@ std::int64_t param_hash(const RunParams& p, const std::string& env) {
   };
   thread_local Last last;
   const auto& table = param_table();
+  static const std::vector<std::uint64_t> defaults = [&] {
+    std::vector<std::uint64_t> d;
+    for (const ParamInfo& info : table) d.push_back(std::bit_cast<std::uint64_t>(info.get(RunParams{})));
+    return d;
+  }();
   const std::size_t n = table.size();
   std::size_t from = 0;
   Fnv1a f;
@@ -100,6 +106,7 @@ std::int64_t param_hash(const RunParams& p, const std::string& env) {
     const double v = table[i].get(p);
     last.before[i] = f.h;
     last.bits[i] = std::bit_cast<std::uint64_t>(v);
+    if (!table[i].hashed_at_default && last.bits[i] == defaults[i]) continue;
     f.add(table[i].name);
     f.add('=');
     add_hex_float(f, v);

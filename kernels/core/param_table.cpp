@@ -10,6 +10,8 @@ namespace {
 
 using Kind = ParamInfo::Kind;
 
+double defaults_at(const FlowDefaults& d, int k) { return k == 0 ? d.a : k == 1 ? d.b : k == 2 ? d.c : d.d; }
+
 #define CW_REAL(field, lo, hi, unset_ok, help)                                                               \
   ParamInfo {                                                                                                \
 #field, help, Kind::real, lo, hi, unset_ok,                                                              \
@@ -29,12 +31,86 @@ using Kind = ParamInfo::Kind;
                                                                [](RunParams & p, double v) { p.field = type(int(v)); } \
   }
 
+// `system`: a choice whose names are system_list.hpp's.
+ParamInfo system_param() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> n;
+    for (int s = 0; s < system_count; ++s) n.push_back(system_name(s));
+    return n;
+  }();
+  return ParamInfo{"system",
+                   "chaotic system driving the Arnold planner family (planner = arnold): the Arnold flow, or a "
+                   "flow of kernels/systems/flows/ with coefficients sys_a..sys_d",
+                   Kind::choice,
+                   0,
+                   0,
+                   false,
+                   names,
+                   [](const RunParams& p) { return double(p.system); },
+                   [](RunParams& p, double v) { p.system = int(v); },
+                   false};
+}
+
+// ic_x, ic_y, ic_z: read as the initial state the run takes (system_ic: an
+// unset one is its system's default), so rows, hashes and `run --from` see
+// the value used, and an Arnold run's as before they could be unset.
+template <int K>
+ParamInfo ic_param() {
+  static constexpr const char* names[] = {"ic_x", "ic_y", "ic_z"};
+  static constexpr const char* helps[] = {
+      "initial state x of the chaotic system (unset: the system's default, Arnold 0)",
+      "initial state y of the chaotic system (unset: the system's default, Arnold 1)",
+      "initial state z of the chaotic system (unset: the system's default, Arnold 0)"};
+  return ParamInfo{names[K],
+                   helps[K],
+                   Kind::real,
+                   -1e6,
+                   1e6,
+                   false,
+                   {},
+                   [](const RunParams& p) {
+                     const Vec3<double> u = system_ic(p);
+                     return K == 0 ? u.x : K == 1 ? u.y : u.z;
+                   },
+                   [](RunParams& p, double v) {
+                     (K == 0 ? p.ic_x : K == 1 ? p.ic_y : p.ic_z) = v;
+                   }};
+}
+
+// sys_a..sys_d's help: what the coefficient is in each flow that uses it.
+std::string_view coeff_help(int i) {
+  static const std::vector<std::string> texts = [] {
+    std::vector<std::string> t;
+    for (int k = 0; k < 4; ++k) {
+      std::string s = "flow coefficient ";
+      s.push_back(char('a' + k));
+      s.append(" (unset: the flow's default):");
+      const char* sep = " ";
+      for_each_flow([&](auto tag) {
+        using F = typename decltype(tag)::type;
+        if (k >= F::defaults.count) return;
+        s.append(sep).append(F::name).append(" ").append(F::defaults.names[k]).append(" = ");
+        s.append(format_number(defaults_at(F::defaults, k)));
+        sep = ", ";
+      });
+      t.push_back(s);
+    }
+    return t;
+  }();
+  return texts[std::size_t(i)];
+}
+
 std::vector<ParamInfo> make_table() {
   std::vector<ParamInfo> t = {
       CW_CHOICE(planner, Planner,
                 "planner: Arnold flow (with the switches below), Logistic map only, Chebyshev map (seed 001) "
                 "Arnold contraction (seed 003) or bouncing robot (seed 002)",
                 "arnold", "logistic", "chebyshev", "contraction", "bouncing"),
+      system_param(),
+      CW_REAL(sys_a, -1e6, 1e6, true, coeff_help(0)),
+      CW_REAL(sys_b, -1e6, 1e6, true, coeff_help(1)),
+      CW_REAL(sys_c, -1e6, 1e6, true, coeff_help(2)),
+      CW_REAL(sys_d, -1e6, 1e6, true, coeff_help(3)),
       CW_INT(index_switching, 0, 1, "orientation control: 1 switches DSindex when coverage stalls"),
       CW_INT(switch_min_new, 0, 1e9, "a segment adding at most this many cells counts as stalled"),
       CW_INT(map_zoning, 0, 1, "map zoning: 1 runs MapZoning when Eq. 5 fails"),
@@ -95,9 +171,9 @@ std::vector<ParamInfo> make_table() {
       CW_REAL(A, -1e3, 1e3, false, "Arnold coefficient A"),
       CW_REAL(B, -1e3, 1e3, false, "Arnold coefficient B"),
       CW_REAL(C, -1e3, 1e3, false, "Arnold coefficient C"),
-      CW_REAL(ic_x, -1e6, 1e6, false, "Arnold initial state x"),
-      CW_REAL(ic_y, -1e6, 1e6, false, "Arnold initial state y"),
-      CW_REAL(ic_z, -1e6, 1e6, false, "Arnold initial state z"),
+      ic_param<0>(),
+      ic_param<1>(),
+      ic_param<2>(),
       CW_INT(ds_index, 1, 3, "Arnold coordinate driving the heading: 1=x, 2=y, 3=z"),
       CW_REAL(f, 1e-3, 1e3, false, "scaling factor f (1 = no scaling)"),
       CW_REAL(v, 1e-3, 1e3, false, "robot speed, m/s"),
@@ -129,6 +205,8 @@ std::vector<ParamInfo> make_table() {
       CW_INT(niter, 1, 1e9, "points per segment (SystemScaler call)"),
       CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter, logistic_jitter)"),
   };
+  for (ParamInfo& info : t)
+    if (info.name.starts_with("sys_")) info.hashed_at_default = false;
   return t;
 }
 
@@ -200,6 +278,9 @@ std::string variant_name(const RunParams& p) {
     if (!s.empty()) s += '+';
     s += part;
   };
+  // Another flow in place of the Arnold flow leads the name (its runs never
+  // group with Arnold's): "lorenz", "lorenz+scaling", ...
+  if (p.system != arnold_system) add(std::string(system_name(p.system)).c_str());
   if (p.index_switching) add("index_switching");
   if (p.map_zoning) add("map_zoning");
   if (p.f != 1.0) add("scaling");

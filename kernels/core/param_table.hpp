@@ -22,6 +22,10 @@ struct ParamInfo {
   std::vector<std::string_view> choices;  // names of a choice's values, by index
   double (*get)(const RunParams&);        // a choice reads as its index
   void (*set)(RunParams&, double);
+  // False for parameters added after result files began to store
+  // param_hash: they enter the hash only when set away from their default,
+  // so every earlier run keeps the hash its files hold.
+  bool hashed_at_default = true;
 
   // Empty when v is allowed, else a message naming the parameter and its range.
   std::string check(double v) const;

@@ -2,6 +2,7 @@
 // What a run is (its parameters) and what it yields (its result). A run is a
 // pure function RunParams x Environment -> RunResult (docs/spec.md §6).
 #include "kernels/systems/cheb_transform.hpp"
+#include "kernels/systems/system_list.hpp"
 
 #include <cstdint>
 #include <limits>
@@ -45,9 +46,16 @@ inline constexpr double unset = std::numeric_limits<double>::quiet_NaN();
 
 struct RunParams {
   Planner planner = Planner::arnold;
-  // Arnold flow coefficients and initial state (docs/spec.md §2 defaults).
+  // The chaotic system driving the Arnold planner family: 0 the Arnold flow,
+  // else a flow of kernels/systems/system_list.hpp (Lorenz, Chen, Chua, ...)
+  // with coefficients sys_a..sys_d (unset: the flow's defaults).
+  int system = arnold_system;
+  double sys_a = unset, sys_b = unset, sys_c = unset, sys_d = unset;
+  // Arnold flow coefficients (docs/spec.md §2 defaults), and the initial
+  // state of the system: unset, its default (Arnold (0, 1, 0), a flow's
+  // FlowDefaults::ic), per coordinate; read it with system_ic.
   double A = 0.5, B = 0.25, C = 0.25;
-  double ic_x = 0.0, ic_y = 1.0, ic_z = 0.0;
+  double ic_x = unset, ic_y = unset, ic_z = unset;
   int ds_index = 3;                         // heading = x (1), y (2) or z (3)
   double f = 1.0;                           // scaling factor (1 = no scaling)
   double v = 1.0;                           // robot speed, m/s
@@ -120,6 +128,21 @@ struct RunParams {
   double logistic_jitter = 0.0;
   std::int64_t seed = 0;
 };
+
+// The run's initial state before any jitter: each ic coordinate as set, an
+// unset one the system's default (docs/spec.md §2).
+inline Vec3<double> system_ic(const RunParams& p) {
+  const FlowDefaults d = system_defaults(p.system);
+  auto pick = [](double v, double dflt) { return v != v ? dflt : v; };  // v != v: unset (NaN)
+  return {pick(p.ic_x, d.ic[0]), pick(p.ic_y, d.ic[1]), pick(p.ic_z, d.ic[2])};
+}
+
+// A flow's coefficients: sys_a..sys_d, each unset one the flow's default.
+inline FlowCoeffs<double> flow_coeffs(const RunParams& p) {
+  const FlowDefaults d = system_defaults(p.system);
+  auto pick = [](double v, double dflt) { return v != v ? dflt : v; };
+  return {pick(p.sys_a, d.a), pick(p.sys_b, d.b), pick(p.sys_c, d.c), pick(p.sys_d, d.d)};
+}
 
 struct RunResult {
   Status status = Status::invalid;

@@ -8,14 +8,40 @@
 namespace chaosweep {
 
 Vec3<double> LaneBinding::lane_state(const LaneArrays& a, int l) const {
-  return from_lane(Vec3<double>{a.x[l], a.y[l], a.z[l]}, run_.ds_);
+  const Vec3<double> u{a.x[l], a.y[l], a.z[l]};
+  return run_.sys_ == arnold_system ? from_lane(u, run_.ds_) : u;
 }
 
 Trig3<double> LaneBinding::lane_trig(const LaneArrays& a, int l) const {
+  if (run_.sys_ != arnold_system) return run_.trig_;  // a flow carries no trig
   return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, run_.ds_);
 }
 
+// A flow's step inputs (LaneArrays::system): its state as labelled, no trig.
+void LaneBinding::write_flow_step(LaneArrays& a, int l) const {
+  a.x[l] = run_.u_.x;
+  a.y[l] = run_.u_.y;
+  a.z[l] = run_.u_.z;
+  a.sx[l] = a.sy[l] = a.sz[l] = 0.0;
+  a.cx[l] = a.cy[l] = a.cz[l] = 1.0;
+  a.kA[l] = run_.fk_.a;
+  a.kB[l] = run_.fk_.b;
+  a.kC[l] = run_.fk_.c;
+  a.kD[l] = run_.fk_.d;
+  a.ds[l] = run_.ds_;
+  a.h[l] = run_.h_;
+  a.h_pos[l] = run_.p_.f * run_.p_.v * run_.h_;
+  a.pos6[l] = 0.0;
+  a.small[l] = 0.0;
+}
+
 void LaneBinding::write_lane(LaneArrays& a, int l) {
+  if (run_.sys_ != arnold_system) write_flow_step(a, l);
+  else write_arnold_step(a, l);
+  write_robot(a, l);
+}
+
+void LaneBinding::write_arnold_step(LaneArrays& a, int l) const {
   const Vec3<double> u = to_lane(run_.u_, run_.ds_);
   const Trig3<double> t = to_lane(run_.trig_, run_.ds_);
   const StepScale<double> sc = step_scale(to_lane(run_.k_, run_.ds_), run_.h_, run_.p_.f * run_.p_.v * run_.h_);
@@ -33,6 +59,9 @@ void LaneBinding::write_lane(LaneArrays& a, int l) {
   a.kC[l] = sc.kh.C;
   a.pos6[l] = sc.pos6;
   a.small[l] = small_shift_mode(run_.h_, run_.p_.A, run_.p_.B, run_.p_.C) ? 1.0 : 0.0;
+}
+
+void LaneBinding::write_robot(LaneArrays& a, int l) {
   a.X[l] = run_.robot_.x();
   a.Y[l] = run_.robot_.y();
   a.t[l] = run_.t_;

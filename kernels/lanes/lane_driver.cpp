@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <chrono>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -14,7 +15,9 @@ namespace chaosweep {
 
 LaneSink::~LaneSink() = default;
 
-bool lane_eligible(const RunParams& p) { return p.planner == Planner::arnold && p.integrator == Integrator::rk4; }
+bool lane_eligible(const RunParams& p) {
+  return p.planner == Planner::arnold && p.integrator == Integrator::rk4 && p.system >= 0 && p.system < system_count;
+}
 
 namespace {
 
@@ -44,6 +47,22 @@ class LaneDriver final : public LaneSink {
     a_.lanes = lanes;
     for (int l = 0; l < lanes; ++l) load(l);
     active_ = any_active();
+  }
+
+  // The lanes run one system at a time (LaneArrays::system): once the
+  // integrator has no active lane, the runs of other systems taken on the
+  // way start, a system at a time. False when none is left.
+  bool next_system() {
+    for (;;) {
+      int k = 0;
+      while (k < system_count && pending_[std::size_t(k)].empty()) ++k;
+      if (k == system_count) return false;
+      system_ = k;
+      a_.system = k;
+      for (int l = 0; l < a_.lanes; ++l) load(l);
+      active_ = any_active();
+      if (active_) return true;
+    }
   }
 
   // Visits only the lanes whose step reached dc (to end the run) and the
@@ -76,7 +95,9 @@ class LaneDriver final : public LaneSink {
 
   // Idle lane: harmless numbers (a frozen, flagged lane), never read back.
   void idle_lane(int l) {
-    a_.x[l] = a_.y[l] = a_.z[l] = a_.kA[l] = a_.kB[l] = a_.kC[l] = a_.pos6[l] = 0.0;
+    a_.x[l] = a_.y[l] = a_.z[l] = a_.kA[l] = a_.kB[l] = a_.kC[l] = a_.kD[l] = a_.pos6[l] = 0.0;
+    a_.ds[l] = 3.0;
+    a_.h[l] = a_.h_pos[l] = 0.0;
     a_.sx[l] = a_.sy[l] = a_.sz[l] = 0.0;
     a_.cx[l] = a_.cy[l] = a_.cz[l] = 1.0;
     a_.small[l] = 1.0;
@@ -137,16 +158,19 @@ class LaneDriver final : public LaneSink {
   // Puts the next run that needs integrating into lane l (or leaves it idle).
   void load(int l) {
     Slot& s = slots_[std::size_t(l)];
-    for (;;) {
-      if (q_.stop && q_.stop->load(std::memory_order_relaxed)) break;
-      s.item = q_.next.fetch_add(1);
-      if (s.item >= q_.n) break;
+    while (take(s.item)) {
       s.t0 = clock_type::now();
       RunResult& r = results_[s.item];
       const BatchItem& it = items_[s.item];
       if (!lane_eligible(*it.params)) {  // scalar reference path, right here
         run_scalar(it, r);
         count(r);
+        continue;
+      }
+      if (system_ < 0) a_.system = system_ = it.params->system;  // the first lane run's
+      if (it.params->system != system_) {                        // for a later turn of its system's (next_system)
+        pending_[std::size_t(it.params->system)].push_back(s.item);
+        ++held_;
         continue;
       }
       try {
@@ -171,30 +195,53 @@ class LaneDriver final : public LaneSink {
     idle_lane(l);
   }
 
+  // The next run for a lane: one of the current system's taken earlier, else
+  // the queue's next (none once `stop` is set: a taken run always finishes).
+  bool take(std::size_t& item) {
+    if (system_ >= 0 && !pending_[std::size_t(system_)].empty()) {
+      item = pending_[std::size_t(system_)].front();
+      pending_[std::size_t(system_)].pop_front();
+      --held_;
+      return true;
+    }
+    // Holding a lane's worth of other systems' runs, take no more: the lanes
+    // drain and turn to them, and the rest of the queue stays for the other
+    // threads (else one thread would hold all of a mixed batch's tail).
+    if (held_ >= std::size_t(a_.lanes)) return false;
+    if (q_.stop && q_.stop->load(std::memory_order_relaxed)) return false;
+    item = q_.next.fetch_add(1);
+    return item < q_.n;
+  }
+
   RunQueue& q_;
   const BatchItem* items_;
   RunResult* results_;
   std::vector<Slot> slots_;
   LaneArrays a_;
-  bool active_ = false;  // some lane has a run
+  bool active_ = false;   // some lane has a run
+  int system_ = -1;       // the lanes' system (-1: no lane run yet)
+  std::size_t held_ = 0;  // runs in pending_
+  std::vector<std::deque<std::size_t>> pending_ = std::vector<std::deque<std::size_t>>(std::size_t(system_count));
 };
 
 }  // namespace
 
 void run_queue(RunQueue& queue, SimdTarget target) {
   LaneDriver driver(queue, lane_count(target));
-  if (!driver.any_active()) return;
-  switch (target) {
-    case SimdTarget::scalar:
-      integrate_lanes_scalar(driver.arrays(), driver);
-      break;
-    case SimdTarget::avx2:
-      integrate_lanes_avx2(driver.arrays(), driver);
-      break;
-    case SimdTarget::avx512:
-      integrate_lanes_avx512(driver.arrays(), driver);
-      break;
-  }
+  if (!driver.any_active() && !driver.next_system()) return;
+  do {
+    switch (target) {
+      case SimdTarget::scalar:
+        integrate_lanes_scalar(driver.arrays(), driver);
+        break;
+      case SimdTarget::avx2:
+        integrate_lanes_avx2(driver.arrays(), driver);
+        break;
+      case SimdTarget::avx512:
+        integrate_lanes_avx512(driver.arrays(), driver);
+        break;
+    }
+  } while (driver.next_system());
 }
 
 void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target) {

@@ -5,9 +5,12 @@
 // step's common case (fast_path, mark_entered) until a step leaves the sink
 // work, store, let the sink handle it. Include only from
 // lane_kernel_<target>.cpp.
+#include <type_traits>
+
 #include "kernels/core/boundary.hpp"
 #include "kernels/lanes/lane_arrays.hpp"
 #include "kernels/systems/arnold_flow.hpp"
+#include "kernels/systems/system_list.hpp"
 
 namespace chaosweep {
 
@@ -180,6 +183,26 @@ inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
           lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
 }
 
+// A flow lane's inputs to a step (system_list.hpp's flows: no relabelling,
+// no carried trig; the heading coordinate by per-lane masks).
+template <class V>
+struct FlowInput {
+  Vec3<V> u;
+  FlowCoeffs<V> k;
+  HeadingSelect<V> hs;
+  V h, h_pos;
+};
+
+template <class V>
+inline FlowInput<V> load_flow_input(const LaneArrays& a, int o) {
+  const V ds = lane_load<V>(a.ds + o);
+  return {{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)},
+          {lane_load<V>(a.kA + o), lane_load<V>(a.kB + o), lane_load<V>(a.kC + o), lane_load<V>(a.kD + o)},
+          {ds == lane::splat<V>(1.0), ds == lane::splat<V>(2.0)},
+          lane_load<V>(a.h + o),
+          lane_load<V>(a.h_pos + o)};
+}
+
 // Brings the step and segment counts up to date after `passes` steps of
 // which every lane took all but the last, and the lanes in `applied` that
 // one too (a flagged lane's step is the sink's to count).
@@ -215,21 +238,35 @@ struct StepsDone {
 
 // Steps the lanes from the arrays' state, keeping it in registers, until a
 // step leaves the sink work; stores every lane's state after that step.
-template <class V, int N, bool Staged, bool General>
+// Flow: void for the Arnold flow (its own step), else a flow of
+// system_list.hpp (flow_rk4_step, Staged ignored).
+template <class V, int N, bool Staged, bool General, class Flow = void>
 inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
+  constexpr bool arnold = std::is_void_v<Flow>;
   StepInput<V> in[N];
+  FlowInput<V> fin[N];
   FastPathInputs<V> fixed[N];
   for (int k = 0; k < N; ++k) {
-    in[k] = load_step_input<V>(a, k * w);
+    if constexpr (arnold) in[k] = load_step_input<V>(a, k * w);
+    else fin[k] = load_flow_input<V>(a, k * w);
     fixed[k] = load_fast_path_inputs<V>(a, k * w);
   }
   StepsDone d;
   do {
     ++d.passes;
     Rk4Step<V> s[N];
-    if constexpr (Staged && N == 2) {
+    if constexpr (!arnold) {
+      for (int k = 0; k < N; ++k) {
+        const FlowStep<V> f = flow_rk4_step<Flow>(fin[k].u, fin[k].k, fin[k].hs, fin[k].h, fin[k].h_pos);
+        s[k].u = f.u;
+        const V zero = lane::splat<V>(0.0);
+        s[k].t = Trig3<V>{zero, zero, zero, zero, zero, zero};  // a flow carries no trig
+        s[k].dX = f.dX;
+        s[k].dY = f.dY;
+      }
+    } else if constexpr (Staged && N == 2) {
       Rk4Work<V, HeadingZ> wk[2];
       for (int k = 0; k < 2; ++k) {
         wk[k].u = in[k].u;
@@ -247,8 +284,12 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
       const FastPathBits b = fast_path<V, General>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)));
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
-      in[k].u = s[k].u;
-      in[k].t = s[k].t;
+      if constexpr (arnold) {
+        in[k].u = s[k].u;
+        in[k].t = s[k].t;
+      } else {
+        fin[k].u = s[k].u;
+      }
     }
     d.flagged = ~d.applied & all_lanes;
     d.covered = mark_entered<V>(a, entered);
@@ -266,12 +307,22 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
 // lanes that are all under the mirror boundary on open maps and one for the
 // others.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
+// The lanes all run one system (a.system): the Arnold flow's step, or one
+// flow_rk4_step per vector for a flow.
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
     bool general = false;
     for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.clear[l] != nullptr;
-    const StepsDone d = general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
+    StepsDone d;
+    if (a.system == arnold_system) {
+      d = general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
+    } else {  // every lane runs a.system (LaneArrays::system)
+      with_flow(a.system, [&](auto tag) {
+        using F = typename decltype(tag)::type;
+        d = general ? steps_until_sink<V, N, false, true, F>(a) : steps_until_sink<V, N, false, false, F>(a);
+      });
+    }
     count_steps<V>(a, d.passes, d.applied);
     a.flagged = d.flagged;
     a.covered = d.covered;

@@ -18,10 +18,32 @@ namespace {
 constexpr double max_cells = 1 << 28;
 
 std::string fmt(double v) { return format_number(v); }
+
+// A flow's coefficients are set only for a system that has them.
+std::string check_system(const RunParams& p) {
+  if (p.system != arnold_system && p.planner != Planner::arnold)
+    return "system = " + std::string(system_name(p.system)) +
+           " drives only planner = arnold (planner = " + to_string(p.planner) + " has its own system)";
+  const FlowDefaults d = system_defaults(p.system);
+  const double coeffs[] = {p.sys_a, p.sys_b, p.sys_c, p.sys_d};
+  for (int k = 0; k < 4; ++k) {
+    if (std::isnan(coeffs[k]) || k < d.count) continue;
+    const std::string name = std::string("sys_") + char('a' + k);
+    if (d.count == 0)
+      return name + " is set but system = " + std::string(system_name(p.system)) +
+             " has no flow coefficients (the Arnold flow takes A, B, C)";
+    std::string have;
+    for (int i = 0; i < d.count; ++i) have += std::string(i ? ", " : "") + d.names[i];
+    return name + " is set but system = " + std::string(system_name(p.system)) + " has " + std::to_string(d.count) +
+           " coefficients (" + have + " as sys_a.." + char('a' + d.count - 1) + ")";
+  }
+  return {};
+}
 }  // namespace
 
 std::string validate_run(const RunParams& p, const Environment& env) {
   if (std::string e = check_ranges(p); !e.empty()) return e;
+  if (std::string e = check_system(p); !e.empty()) return e;
   if (!(env.lx > 0 && env.ly > 0)) return "environment '" + env.name + "' has no area";
   if ((env.lx / p.sr) * (env.ly / p.sr) > max_cells)
     return "sr = " + fmt(p.sr) + " gives more than 2^28 cells on a " + fmt(env.lx) + " x " + fmt(env.ly) +

@@ -18,11 +18,16 @@ namespace chaosweep {
 namespace {
 
 // The definition the files were written with: FNV-1a of "env=ENV;" and
-// "NAME=%a;" for every parameter in table order, text built by snprintf.
+// "NAME=%a;" for every parameter in table order, text built by snprintf;
+// a parameter added since (not hashed_at_default) only when its bits differ
+// from its default's.
 std::int64_t reference_param_hash(const RunParams& p, const std::string& env) {
   std::string text = "env=" + env + ";";
   char buf[64];
   for (const ParamInfo& info : param_table()) {
+    if (!info.hashed_at_default &&
+        std::bit_cast<std::uint64_t>(info.get(p)) == std::bit_cast<std::uint64_t>(info.get(RunParams{})))
+      continue;
     std::snprintf(buf, sizeof buf, "=%a;", info.get(p));
     text += std::string(info.name) + buf;
   }

@@ -24,6 +24,7 @@ int auto_th(const RunParams& p, const Environment& env) {
 
 Vec3<double> initial_state(const RunParams& p) {
   const Vec3<double> u = jittered_ic(p);
+  if (p.system != arnold_system) return u;  // only the Arnold flow's coordinates are angles
   return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
 }
 
@@ -46,6 +47,8 @@ PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid&
       needed_(cells_needed(p, grid)),
       budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
       k_{p.A, p.B, p.C},
+      sys_(p.system),
+      fk_(flow_coeffs(p)),
       u_(initial_state(p)),
       trig_(trig3(u_)),
       ds_(p.ds_index),
@@ -104,7 +107,9 @@ void PlannerRun::begin_segment() {
   seg_c_u_ = grid_.free_cells() - grid_.visited_cells();  // unvisited before the segment
   seg_before_ = grid_.visited_cells();
   seg_step_ = 0;
-  trig_ = trig3(u_);  // a segment starts from exact trig: bounds the carried trig's drift
+  // A segment starts from exact trig: bounds the carried trig's drift (a
+  // flow carries none).
+  if (sys_ == arnold_system) trig_ = trig3(u_);
 }
 
 void PlannerRun::end_segment() {
@@ -133,20 +138,22 @@ bool PlannerRun::arnold_step_done(const Vec3<double>& u, const Trig3<double>& t,
   trig_ = t;
   r_.steps += 1;
   if (!finite(u_)) {
-    end(Status::diverged, "non-finite Arnold state");
+    end(Status::diverged, "non-finite chaotic state");
     return true;
   }
   return point_done(p_.f * h_);
 }
 
-void PlannerRun::arnold_step() {
-  const HeadingSelect<double> hs = heading_select(ds_);
+// One point of the scalar path by `step(u, trig, h, h_pos)` (an Rk4Step of
+// the run's system): fixed step, or step doubling.
+template <class Step>
+void PlannerRun::take_point(const Step& step) {
   const double h_pos = p_.f * p_.v * h_;
-  const Rk4Step<double> full = rk4_step(u_, trig_, k_, hs, h_, h_pos);
+  const Rk4Step<double> full = step(u_, trig_, h_, h_pos);
   if (p_.integrator == Integrator::rk4_doubling) {
     const double hh = 0.5 * h_, hh_pos = 0.5 * h_pos;
-    const Rk4Step<double> a = rk4_step(u_, trig_, k_, hs, hh, hh_pos);
-    const Rk4Step<double> b = rk4_step(a.u, a.t, k_, hs, hh, hh_pos);
+    const Rk4Step<double> a = step(u_, trig_, hh, hh_pos);
+    const Rk4Step<double> b = step(a.u, a.t, hh, hh_pos);
     if (std::fabs(full.dX - (a.dX + b.dX)) > p_.ep || std::fabs(full.dY - (a.dY + b.dY)) > p_.ep) {
       // Accept the two half steps (one point) and keep dt/2 for the rest of the run.
       robot_.move(a.dX, a.dY);
@@ -157,13 +164,30 @@ void PlannerRun::arnold_step() {
       h_ = hh;
       r_.steps += 2;
       ++r_.dt_halvings;
-      if (!finite(u_)) return end(Status::diverged, "non-finite Arnold state");
+      if (!finite(u_)) return end(Status::diverged, "non-finite chaotic state");
       if (point_done(p_.f * dt_used)) return;
       if (h_ < p_.dt_min) end(Status::diverged, "step doubling shrank dt below dt_min");
       return;
     }
   }
   arnold_step_done(full.u, full.t, full.dX, full.dY);
+}
+
+void PlannerRun::arnold_step() {
+  const HeadingSelect<double> hs = heading_select(ds_);
+  if (sys_ == arnold_system) {
+    take_point([&](const Vec3<double>& u, const Trig3<double>& t, double h, double h_pos) {
+      return rk4_step(u, t, k_, hs, h, h_pos);
+    });
+    return;
+  }
+  with_flow(sys_, [&](auto tag) {
+    using F = typename decltype(tag)::type;
+    take_point([&](const Vec3<double>& u, const Trig3<double>& t, double h, double h_pos) {
+      const FlowStep<double> s = flow_rk4_step<F>(u, fk_, hs, h, h_pos);
+      return Rk4Step<double>{s.u, t, s.dX, s.dY};  // a flow carries no trig
+    });
+  });
 }
 
 // ----------------------------------------------------- Logistic map only

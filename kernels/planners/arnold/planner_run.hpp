@@ -16,6 +16,7 @@
 #include "kernels/planners/arnold/zones.hpp"
 #include "kernels/systems/arnold_flow.hpp"
 #include "kernels/systems/logistic_map.hpp"
+#include "kernels/systems/system_list.hpp"
 
 namespace chaosweep {
 
@@ -51,8 +52,11 @@ class PlannerRun {
  private:
   void logistic_loop();
   long logistic_segment();
-  // One Arnold step of the scalar path (fixed step or step doubling).
+  // One step of the run's chaotic system on the scalar path (fixed step or
+  // step doubling; the Arnold flow or a flow of system_list.hpp).
   void arnold_step();
+  template <class Step>
+  void take_point(const Step& step);
   // After an Arnold point: clock, end checks, segment bookkeeping.
   bool point_done(double dt);
   void begin_segment();
@@ -78,6 +82,8 @@ class PlannerRun {
   long needed_;
   double budget_;
   ArnoldCoeffs<double> k_;
+  int sys_;                // RunParams::system
+  FlowCoeffs<double> fk_;  // a flow's coefficients (flow_coeffs)
   Vec3<double> u_;
   // Trig of u_, carried by rk4_step. u_ changes by RK4 steps alone (not by
   // switching, zoning or transits); full sincos at the start and at every
@@ -110,8 +116,8 @@ inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
   return ended_;
 }
 
-// The run's jittered ic (jittered_ic, kernels/core/chaotic_spread.hpp)
-// wrapped into [-pi, pi] (the Arnold planners' state).
+// The run's jittered ic (jittered_ic, kernels/core/chaotic_spread.hpp),
+// for the Arnold flow wrapped into [-pi, pi] (its state is angles).
 Vec3<double> initial_state(const RunParams& p);
 // The Logistic map a run starts from (and, with logistic_reset = drop,
 // restarts from when a zone is dropped).
