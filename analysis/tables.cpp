@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "analysis/grouping.hpp"
+#include "analysis/leaderboard.hpp"
 #include "analysis/named_list.hpp"
 #include "analysis/papers/bouncing_paper.hpp"
 #include "analysis/papers/chebyshev_paper.hpp"
@@ -227,13 +228,6 @@ struct Table1Case {
 };
 
 // Cases: the spec's label (a Table 1 row) when every run has one.
-bool every_run_labelled(const ResultSet& rs) {
-  bool labelled = rs.has("label");
-  if (labelled)
-    for (const std::string& l : rs.text("label")) labelled = labelled && !l.empty();
-  return labelled;
-}
-
 std::vector<Table1Case> table1_cases(const ResultSet& rs, bool labelled) {
   const std::vector<std::string> case_keys =
       labelled ? std::vector<std::string>{"label"} : std::vector<std::string>{"size_x", "sr", "env", "variant"};
@@ -329,6 +323,13 @@ TextTable table1(const ResultSet& rs, const TableOptions& opt) {
 
 }  // namespace
 
+bool every_run_labelled(const ResultSet& rs) {
+  bool labelled = rs.has("label");
+  if (labelled)
+    for (const std::string& l : rs.text("label")) labelled = labelled && !l.empty();
+  return labelled;
+}
+
 double tuple_score(const ResultSet& rs, const std::vector<std::size_t>& rows) {
   std::vector<double> v;
   const auto& status = rs.text("status");
@@ -358,6 +359,7 @@ const std::vector<TableKind>& table_kinds() {
       {"table1", true, table1},
       {"best", true, best_table},
       {"summary", true, summary_table},
+      {"leaderboard", true, [](const ResultSet& rs, const TableOptions& opt) { return leaderboard_table(rs, opt.by); }},
       {"seed001", false, [](const ResultSet&, const TableOptions&) { return seed001_table(); }},
       {"seed002", false,
        [](const ResultSet&, const TableOptions& opt) {
@@ -395,6 +397,11 @@ TableColumns table_columns(const std::string& name, const TableOptions& opt) {
   if (name == "tune") {
     t.all = false;
     t.columns = tune_table_columns();
+    return t;
+  }
+  if (name == "leaderboard") {
+    t.all = false;
+    t.columns = leaderboard_columns(opt.by);
     return t;
   }
   if (name != "summary" && name != "best") return t;

@@ -41,6 +41,8 @@ bool table_needs_results(const std::string& name);
 std::map<std::string, std::pair<double, double>> read_paper(const std::string& path);
 // A case's technique set ("original", "IS", "MZ+SC", "Logistic map", ...).
 std::string technique(const ResultSet& rs, const std::vector<std::size_t>& rows);
+// Whether every run has a non-empty label.
+bool every_run_labelled(const ResultSet& rs);
 // A label as a number (NaN when it is not one).
 double label_number(const std::string& s);
 

@@ -19,6 +19,9 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
       "  best     the --top K parameter tuples per --by group, by median CT (timeouts count as\n"
       "           infinite); parameters: --params, else those that vary\n"
       "  summary  per --by group (default: variant): runs, ok rate, CT quantiles, median PR\n"
+      "  leaderboard  per map (env, size, SR) the planners (--by, default: label, else variant)\n"
+      "           ranked by median CT, with ok rate, PR, coverage, visit evenness, turn entropy;\n"
+      "           and each planner's mean rank over the maps\n"
       "  seed001  seed 001's Chebyshev-map numbers (Lyapunov exponents, v(xy)) beside ours;\n"
       "           computed, no result file\n"
       "  seed002  seed 002's policy mixture alpha for {30, 75, 315} deg beside the paper's (Eq. 5\n"
@@ -47,7 +50,7 @@ void add_table_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--format", o->format, "md, csv or tex")->capture_default_str();
   cmd->add_option("-o,--output", o->out, "write to this file instead of standard output");
   add_force_flag(*cmd, o->force);
-  cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary, readings)");
+  cmd->add_option("--by", o->by, "group columns, comma-separated (best, summary, readings; leaderboard: the planner)");
   cmd->add_option("--params", o->params, "parameter columns, comma-separated (best, tune)");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--bins", o->table.bins, "seed002: orientation bins (360: the paper's 1 degree; about a minute)")

@@ -202,7 +202,7 @@ TEST_F(Table1Results, BestRanksTuplesPerGroupAndKeepsTopK) {
 // summary and best read only the columns they need (table_columns); their
 // tables are those of every column loaded, and a missing column is named
 // with the files' columns, loaded or not.
-TEST(Tables, SummaryAndBestOfTheColumnsTheyNeedAreThoseOfEveryColumn) {
+TEST(Tables, SummaryBestAndLeaderboardOfTheColumnsTheyNeedAreThoseOfEveryColumn) {
   TempDir dir;
   auto other = table1_rows();  // another file: sr (constant in each file) differs between them
   for (RunRow& r : other) {
@@ -214,7 +214,7 @@ TEST(Tables, SummaryAndBestOfTheColumnsTheyNeedAreThoseOfEveryColumn) {
   for (const std::vector<std::string>& files :
        {std::vector<std::string>{dir.file("a.h5")}, std::vector<std::string>{dir.file("a.h5"), dir.file("b.h5")}}) {
     const ResultSet all = ResultSet::load(files);
-    for (const std::string name : {"summary", "best"}) {
+    for (const std::string name : {"summary", "best", "leaderboard"}) {
       for (const auto& [by, params] :
            {std::pair<std::string, std::string>{"", ""}, {"label", ""}, {"label", "ds_index,c,f"}, {"env,sr", ""}}) {
         TableOptions opt;
@@ -855,6 +855,50 @@ TEST_F(ReplayedRuns, CommandLineWritesImageAndCsvAndRejectsBadInput) {
   r = test::run_chaosweep("figure trajectory " + h5 + " --run 99 -o " + dir_->file("t.png"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no run with run_id 99"), std::string::npos) << r.err;
+}
+
+// The leaderboard on hand-made rows: two maps, three planners. On map A, p1
+// wins (median 100), p2 and p3 tie (every run short of the target: infinite)
+// and share ranks 2 and 3 as 2.5; on map B, p2 wins and p1 is second; p3
+// never ran there. Metrics are medians over all runs; a file without the
+// path metrics shows "-".
+TEST(Tables, LeaderboardRanksPlannersPerMapWithSharedTiesAndAMeanRank) {
+  const std::vector<std::string> label{"p1", "p1", "p2", "p2", "p3", "p1", "p1", "p2", "p2"};
+  const std::vector<std::string> status{"ok", "ok", "timeout", "timeout", "timeout", "ok", "ok", "ok", "ok"};
+  const std::vector<std::string> env{"A", "A", "A", "A", "A", "B", "B", "B", "B"};
+  const double n = std::numeric_limits<double>::quiet_NaN();
+  std::map<std::string, std::vector<double>> num{{"coverage_time", {90, 110, n, n, n, 300, 500, 200, 260}},
+                                                 {"pr", {0.9, 1.1, n, n, n, 3, 5, 2, 2.6}},
+                                                 {"final_coverage", {0.9, 0.9, 0.5, 0.7, 0.4, 0.9, 0.9, 0.9, 0.9}},
+                                                 {"size_x", std::vector<double>(9, 50)},
+                                                 {"size_y", std::vector<double>(9, 50)},
+                                                 {"sr", std::vector<double>(9, 1)}};
+  const ResultSet without = ResultSet::from_columns(num, {{"label", label}, {"status", status}, {"env", env}});
+  num["visit_evenness"] = {0.8, 0.9, 0.5, 0.7, 0.6, 0.9, 0.9, 0.95, 0.97};
+  num["turn_entropy"] = {1.5, 1.6, 1.0, 1.2, 1.1, 1.7, 1.7, 1.8, 1.9};
+  const ResultSet rs = ResultSet::from_columns(num, {{"label", label}, {"status", status}, {"env", env}});
+  const std::string md = table_text("leaderboard", rs, TableOptions{}, TableFormat::md);
+  EXPECT_NE(md.find("| A 50 m, SR 1 | 1 | p1 | 2 | 1.000 | 100 | 1 | 0.900 | 0.850 | 1.550 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| A 50 m, SR 1 | 2.5 | p2 | 2 | 0.000 | - | - | 0.600 | 0.600 | 1.100 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| A 50 m, SR 1 | 2.5 | p3 | 1 | 0.000 | - | - | 0.400 | 0.600 | 1.100 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| B 50 m, SR 1 | 1 | p2 | 2 | 1.000 | 230 | 2.3 | 0.900 | 0.960 | 1.850 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| B 50 m, SR 1 | 2 | p1 | 2 | 1.000 | 400 | 4 |"), std::string::npos) << md;
+  // p1: (1 + 2) / 2 = 1.5, one win; p2: (2.5 + 1) / 2 = 1.75, one win; p3: 2.5 on one map.
+  EXPECT_NE(md.find("Overall, mean rank over the 2 map(s) (wins): p1 1.5 (1); p2 1.75 (1); p3 2.5 (0) on 1 map(s)."),
+            std::string::npos)
+      << md;
+  const std::string old = table_text("leaderboard", without, TableOptions{}, TableFormat::csv);
+  EXPECT_NE(old.find("\"A 50 m, SR 1\",1,p1,2,1,100,1,0.9,-,-\n"), std::string::npos) << old;
+  // --by names the planner columns; a map column the files lack is named.
+  TableOptions by_env;
+  by_env.by = {"env"};
+  EXPECT_NE(table_text("leaderboard", rs, by_env, TableFormat::md).find("| B 50 m, SR 1 | 1 | B |"), std::string::npos);
+  const ResultSet no_sr = ResultSet::from_columns({{"coverage_time", {1}}}, {{"status", {"ok"}}, {"env", {"A"}}});
+  EXPECT_THROW(table_text("leaderboard", no_sr, TableOptions{}, TableFormat::md), AnalysisError);
 }
 
 }  // namespace

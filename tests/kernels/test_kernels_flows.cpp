@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "kernels/planners/planner.hpp"
 #include "kernels/systems/flow.hpp"
@@ -173,24 +174,18 @@ TEST(Flows, CoefficientsAFlowDoesNotHaveAndOtherPlannersAreRefusedByName) {
   p.system = system_index("chen");
   p.sys_b = 2.5;
   const FlowCoeffs<double> k = flow_coeffs(p);
-  EXPECT_EQ(k.a, 35.0);
-  EXPECT_EQ(k.b, 2.5);
-  EXPECT_EQ(k.c, 28.0);
+  EXPECT_EQ((std::vector<double>{k.a, k.b, k.c}), (std::vector<double>{35.0, 2.5, 28.0}));
   // So does the initial state, per coordinate: Chua's default is (0.7, 0, 0),
   // and an Arnold run's (0, 1, 0) as before ic could be unset.
   p.system = system_index("chua");
   p.ic_y = 0.25;
   const Vec3<double> u = system_ic(p);
-  EXPECT_EQ(u.x, 0.7);
-  EXPECT_EQ(u.y, 0.25);
-  EXPECT_EQ(u.z, 0.0);
+  EXPECT_EQ((std::vector<double>{u.x, u.y, u.z}), (std::vector<double>{0.7, 0.25, 0.0}));
   // A flow's runs are a variant of their own.
   EXPECT_EQ(variant_name(p), "chua");
   p.f = 100;
   p.index_switching = 1;
   EXPECT_EQ(variant_name(p), "chua+index_switching+scaling");
   const Vec3<double> a = system_ic(RunParams{});
-  EXPECT_EQ(a.x, 0.0);
-  EXPECT_EQ(a.y, 1.0);
-  EXPECT_EQ(a.z, 0.0);
+  EXPECT_EQ((std::vector<double>{a.x, a.y, a.z}), (std::vector<double>{0.0, 1.0, 0.0}));
 }
