@@ -21,9 +21,10 @@ const std::vector<std::string>& map_keys() {
 // lack the column or no value is finite.
 double column_median(const ResultSet& rs, const char* column, const std::vector<std::size_t>& rows) {
   if (!rs.has(column)) return std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double>& values = rs.num(column);
   std::vector<double> v;
   for (std::size_t r : rows)
-    if (std::isfinite(rs.num(column)[r])) v.push_back(rs.num(column)[r]);
+    if (std::isfinite(values[r])) v.push_back(values[r]);
   return quantile(std::move(v), 0.5);
 }
 

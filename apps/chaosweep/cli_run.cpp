@@ -27,9 +27,8 @@ void print_readable(const RunRow& row) {
   if (p.system != arnold_system) {
     const FlowDefaults d = system_defaults(p.system);
     const FlowCoeffs<double> k = flow_coeffs(p);
-    const double used[] = {k.a, k.b, k.c, k.d};
     coeffs = std::string(system_name(p.system));
-    for (int i = 0; i < d.count; ++i) coeffs.append(" ").append(d.names[i]).append("=").append(n(used[i]));
+    for (int i = 0; i < d.count; ++i) coeffs.append(" ").append(d.names[i]).append("=").append(n(k.at(i)));
   }
   std::printf("planner         %s  (%s, ds_index %d, f %s, %s, %s)\n", to_string(p.planner), coeffs.c_str(), p.ds_index,
               n(p.f).c_str(), to_string(p.integrator), to_string(p.boundary));

@@ -10,8 +10,6 @@ namespace {
 
 using Kind = ParamInfo::Kind;
 
-double defaults_at(const FlowDefaults& d, int k) { return k == 0 ? d.a : k == 1 ? d.b : k == 2 ? d.c : d.d; }
-
 #define CW_REAL(field, lo, hi, unset_ok, help)                                                               \
   ParamInfo {                                                                                                \
 #field, help, Kind::real, lo, hi, unset_ok,                                                              \
@@ -31,6 +29,13 @@ double defaults_at(const FlowDefaults& d, int k) { return k == 0 ? d.a : k == 1 
                                                                [](RunParams & p, double v) { p.field = type(int(v)); } \
   }
 
+// A parameter added after result files began to store param_hash (see
+// ParamInfo::hashed_at_default).
+ParamInfo added_later(ParamInfo info) {
+  info.hashed_at_default = false;
+  return info;
+}
+
 // `system`: a choice whose names are system_list.hpp's.
 ParamInfo system_param() {
   static const std::vector<std::string_view> names = [] {
@@ -38,17 +43,11 @@ ParamInfo system_param() {
     for (int s = 0; s < system_count; ++s) n.push_back(system_name(s));
     return n;
   }();
-  return ParamInfo{"system",
-                   "chaotic system driving the Arnold planner family (planner = arnold): the Arnold flow, or a "
-                   "flow of kernels/systems/flows/ with coefficients sys_a..sys_d",
-                   Kind::choice,
-                   0,
-                   0,
-                   false,
-                   names,
-                   [](const RunParams& p) { return double(p.system); },
-                   [](RunParams& p, double v) { p.system = int(v); },
-                   false};
+  return added_later(ParamInfo{"system",
+                               "chaotic system driving the Arnold planner family (planner = arnold): the Arnold "
+                               "flow, or a flow of kernels/systems/flows/ with coefficients sys_a..sys_d",
+                               Kind::choice, 0, 0, false, names, [](const RunParams& p) { return double(p.system); },
+                               [](RunParams& p, double v) { p.system = int(v); }});
 }
 
 // ic_x, ic_y, ic_z: read as the initial state the run takes (system_ic: an
@@ -90,7 +89,7 @@ std::string_view coeff_help(int i) {
         using F = typename decltype(tag)::type;
         if (k >= F::defaults.count) return;
         s.append(sep).append(F::name).append(" ").append(F::defaults.names[k]).append(" = ");
-        s.append(format_number(defaults_at(F::defaults, k)));
+        s.append(format_number(F::defaults.coeffs().at(k)));
         sep = ", ";
       });
       t.push_back(s);
@@ -107,10 +106,10 @@ std::vector<ParamInfo> make_table() {
                 "Arnold contraction (seed 003) or bouncing robot (seed 002)",
                 "arnold", "logistic", "chebyshev", "contraction", "bouncing"),
       system_param(),
-      CW_REAL(sys_a, -1e6, 1e6, true, coeff_help(0)),
-      CW_REAL(sys_b, -1e6, 1e6, true, coeff_help(1)),
-      CW_REAL(sys_c, -1e6, 1e6, true, coeff_help(2)),
-      CW_REAL(sys_d, -1e6, 1e6, true, coeff_help(3)),
+      added_later(CW_REAL(sys_a, -1e6, 1e6, true, coeff_help(0))),
+      added_later(CW_REAL(sys_b, -1e6, 1e6, true, coeff_help(1))),
+      added_later(CW_REAL(sys_c, -1e6, 1e6, true, coeff_help(2))),
+      added_later(CW_REAL(sys_d, -1e6, 1e6, true, coeff_help(3))),
       CW_INT(index_switching, 0, 1, "orientation control: 1 switches DSindex when coverage stalls"),
       CW_INT(switch_min_new, 0, 1e9, "a segment adding at most this many cells counts as stalled"),
       CW_INT(map_zoning, 0, 1, "map zoning: 1 runs MapZoning when Eq. 5 fails"),
@@ -205,8 +204,6 @@ std::vector<ParamInfo> make_table() {
       CW_INT(niter, 1, 1e9, "points per segment (SystemScaler call)"),
       CW_INT(seed, 0, 9.007199254740992e15, "seed of the run's random draws (ic_jitter, logistic_jitter)"),
   };
-  for (ParamInfo& info : t)
-    if (info.name.starts_with("sys_")) info.hashed_at_default = false;
   return t;
 }
 

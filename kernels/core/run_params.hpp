@@ -131,17 +131,20 @@ struct RunParams {
 
 // The run's initial state before any jitter: each ic coordinate as set, an
 // unset one the system's default (docs/spec.md §2).
+inline double or_default(double v, double dflt) { return v != v ? dflt : v; }  // v != v: unset (NaN)
+
 inline Vec3<double> system_ic(const RunParams& p) {
   const FlowDefaults d = system_defaults(p.system);
-  auto pick = [](double v, double dflt) { return v != v ? dflt : v; };  // v != v: unset (NaN)
-  return {pick(p.ic_x, d.ic[0]), pick(p.ic_y, d.ic[1]), pick(p.ic_z, d.ic[2])};
+  return {or_default(p.ic_x, d.ic[0]), or_default(p.ic_y, d.ic[1]), or_default(p.ic_z, d.ic[2])};
 }
+
+// sys_a..sys_d as set (NaN: unset).
+inline FlowCoeffs<double> set_flow_coeffs(const RunParams& p) { return {p.sys_a, p.sys_b, p.sys_c, p.sys_d}; }
 
 // A flow's coefficients: sys_a..sys_d, each unset one the flow's default.
 inline FlowCoeffs<double> flow_coeffs(const RunParams& p) {
-  const FlowDefaults d = system_defaults(p.system);
-  auto pick = [](double v, double dflt) { return v != v ? dflt : v; };
-  return {pick(p.sys_a, d.a), pick(p.sys_b, d.b), pick(p.sys_c, d.c), pick(p.sys_d, d.d)};
+  const FlowCoeffs<double> set = set_flow_coeffs(p), d = system_defaults(p.system).coeffs();
+  return {or_default(set.a, d.a), or_default(set.b, d.b), or_default(set.c, d.c), or_default(set.d, d.d)};
 }
 
 struct RunResult {

@@ -25,9 +25,9 @@ std::string check_system(const RunParams& p) {
     return "system = " + std::string(system_name(p.system)) +
            " drives only planner = arnold (planner = " + to_string(p.planner) + " has its own system)";
   const FlowDefaults d = system_defaults(p.system);
-  const double coeffs[] = {p.sys_a, p.sys_b, p.sys_c, p.sys_d};
+  const FlowCoeffs<double> set = set_flow_coeffs(p);
   for (int k = 0; k < 4; ++k) {
-    if (std::isnan(coeffs[k]) || k < d.count) continue;
+    if (std::isnan(set.at(k)) || k < d.count) continue;
     const std::string name = std::string("sys_") + char('a' + k);
     if (d.count == 0)
       return name + " is set but system = " + std::string(system_name(p.system)) +

@@ -22,6 +22,7 @@ namespace chaosweep {
 template <class T>
 struct FlowCoeffs {
   T a, b, c, d;
+  T at(int k) const { return k == 0 ? a : k == 1 ? b : k == 2 ? c : d; }  // a..d by index
 };
 
 struct FlowDefaults {
@@ -29,6 +30,7 @@ struct FlowDefaults {
   int count;             // how many of a..d the flow uses
   const char* names[4];  // their names in the literature, for help texts
   double ic[3];          // the initial state (x, y, z) a run takes when ic is unset
+  FlowCoeffs<double> coeffs() const { return {a, b, c, d}; }
 };
 
 // |x| as a select, the same operations in every lane type (so a signed zero
