@@ -55,7 +55,8 @@ std::vector<double> fractional_ranks(const std::vector<double>& score) {
 std::vector<std::string> leaderboard_columns(const std::vector<std::string>& planner) {
   std::vector<std::string> c = planner.empty() ? std::vector<std::string>{"label", "variant"} : planner;
   c.insert(c.end(), map_keys().begin(), map_keys().end());
-  for (const char* k : {"coverage_time", "pr", "final_coverage", "visit_evenness", "turn_entropy"}) c.emplace_back(k);
+  for (const char* k : {"coverage_time", "pr", "final_coverage", "visit_evenness", "turn_entropy", "coverage_area"})
+    c.emplace_back(k);
   return c;
 }
 
@@ -66,8 +67,8 @@ TextTable leaderboard_table(const ResultSet& rs, std::vector<std::string> planne
   t.title = "Leaderboard: planners ranked on each map by median coverage time";
   t.header = {"map", "rank"};
   t.header.insert(t.header.end(), planner.begin(), planner.end());
-  for (const char* h :
-       {"runs", "ok rate", "median CT", "median PR", "median coverage", "visit evenness", "turn entropy"})
+  for (const char* h : {"runs", "ok rate", "median CT", "median PR", "median coverage", "visit evenness",
+                        "turn entropy", "coverage area"})
     t.header.emplace_back(h);
   struct Standing {
     double rank_sum = 0;
@@ -100,7 +101,7 @@ TextTable leaderboard_table(const ResultSet& rs, std::vector<std::string> planne
       row.push_back(fixed_cell(group_statistic(rs, p.rows, "ok_rate"), 3));
       row.push_back(std::isinf(score[i]) ? "-" : sig_cell(score[i], 5));
       row.push_back(sig_cell(group_statistic(rs, p.rows, "median", "pr"), 3));
-      for (const char* c : {"final_coverage", "visit_evenness", "turn_entropy"}) {
+      for (const char* c : {"final_coverage", "visit_evenness", "turn_entropy", "coverage_area"}) {
         const double v = column_median(rs, c, p.rows);
         row.push_back(std::isnan(v) ? Cell("-") : fixed_cell(v, 3));
       }
@@ -124,8 +125,9 @@ TextTable leaderboard_table(const ResultSet& rs, std::vector<std::string> planne
   t.notes.push_back(
       "Rank by median CT over a planner's runs on the map, a run that did not reach the target counting as "
       "infinite; ties share the mean of their places. PR = CT / T_opt; coverage, visit evenness (Pielou's J of "
-      "cell entries over the free cells) and turn entropy (bits) are medians over all runs (docs/spec.md 1); "
-      "- : the files lack the column.");
+      "cell entries over the free cells), turn entropy (bits) and coverage area (the mean time at which the cells "
+      "the target needs were first visited, over T_opt: 0.5 for a steady lawnmower; lower is faster) are medians "
+      "over all runs (docs/spec.md 1); - : the files lack the column.");
   return t;
 }
 

@@ -25,8 +25,8 @@ void print_readable(const RunRow& row) {
   // The system's coefficients: A, B, C, or a flow's by their names.
   std::string coeffs = "A=" + n(p.A) + " B=" + n(p.B) + " C=" + n(p.C);
   if (p.system != arnold_system) {
-    const FlowDefaults d = system_defaults(p.system);
-    const FlowCoeffs<double> k = flow_coeffs(p);
+    const SystemDefaults d = system_defaults(p.system);
+    const SystemCoeffs<double> k = system_coeffs(p);
     coeffs = std::string(system_name(p.system));
     for (int i = 0; i < d.count; ++i) coeffs.append(" ").append(d.names[i]).append("=").append(n(k.at(i)));
   }

@@ -81,6 +81,7 @@ std::vector<Column> make_columns() {
   c.push_back(i64("reflections", [](const RunRow& r) { return r.result.reflections; }));
   c.push_back(f64("visit_evenness", [](const RunRow& r) { return r.result.visit_evenness; }));
   c.push_back(f64("turn_entropy", [](const RunRow& r) { return r.result.turn_entropy; }));
+  c.push_back(f64("coverage_area", [](const RunRow& r) { return r.result.coverage_area; }));
   c.push_back(i64("race_round", [](const RunRow& r) { return r.tuple.race_round; }));
   c.push_back(i64("config_id", [](const RunRow& r) { return r.tuple.config_id; }));
   c.push_back(text("message", variable, [](const RunRow& r) { return r.result.message; }));

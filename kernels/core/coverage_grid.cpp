@@ -117,4 +117,12 @@ void CoverageGrid::mark_crossing(double x0, double y0, double x1, double y1) {
   mark_cell(i_end, j_end);  // reached unless rounding ended the walk a cell early
 }
 
+double coverage_area(const CoverageGrid& g, double t_end, double budget, double t_opt) {
+  const long n = g.cover_needed();
+  if (n <= 0) return 0.0;
+  const long reached = std::min<long>(g.visited_cells(), n);
+  const double sum = g.cover_time_sum() + double(reached - g.cover_noted()) * t_end + double(n - reached) * budget;
+  return sum / (double(n) * t_opt);
+}
+
 }  // namespace chaosweep

@@ -89,6 +89,29 @@ class CoverageGrid {
     else if (di != 0 || dj != 0) mark_crossing(x0, y0, x1, y1);
   }
 
+  // The coverage-time area (docs/spec.md §1, "Path metrics"): the robot
+  // time at which each of the first `needed` visited free cells was first
+  // visited, summed. A planner calls note_time(t) after each move with the
+  // move's end time (and note_time(0) after marking the start): the cells
+  // marked since the last call count at t. Counting starts with
+  // count_cover_times (prepare_run).
+  void count_cover_times(long needed) { cover_needed_ = needed; }
+  void note_time(double t) {
+    const long now = visited_ < cover_needed_ ? visited_ : cover_needed_;
+    if (now == cover_noted_) return;
+    cover_time_sum_ += double(now - cover_noted_) * t;
+    cover_noted_ = now;
+  }
+  long cover_needed() const { return cover_needed_; }
+  long cover_noted() const { return cover_noted_; }
+  double cover_time_sum() const { return cover_time_sum_; }
+  // For the lane integrators, which add each new cell's time as they mark
+  // it (LaneArrays::cover_sum): the sum taken back, every visited cell noted.
+  void set_cover_time_sum(double s) {
+    cover_time_sum_ = s;
+    cover_noted_ = visited_ < cover_needed_ ? visited_ : cover_needed_;
+  }
+
   // Path metrics (docs/spec.md §1, "Path metrics"), counted as cells are
   // marked, so every planner has them: each entry into a cell other than
   // the last one marked is a visit of it, and the direction of the move
@@ -139,7 +162,9 @@ class CoverageGrid {
   std::vector<int> region_visited_;
   std::vector<std::uint32_t> visits_;  // entries per cell (see visits())
   std::int64_t turns_[4] = {0, 0, 0, 0};
-  long current_ = -1;  // the cell marked last (-1: none yet), at (ci_, cj_)
+  long current_ = -1;                        // the cell marked last (-1: none yet), at (ci_, cj_)
+  long cover_needed_ = 0, cover_noted_ = 0;  // see count_cover_times
+  double cover_time_sum_ = 0.0;
   int ci_ = 0, cj_ = 0, last_dir_ = -1;
 };
 
@@ -151,5 +176,11 @@ double visit_evenness(const CoverageGrid& g);
 // Shannon entropy (bits, in [0, 2]) of the turns between successive cell
 // entries (straight, left, back, right); 0 with no turn counted.
 double turn_entropy(const CoverageGrid& g);
+// The area between the target and the coverage curve, over dc T_opt: the
+// mean first-visit time of the cells the target needs (count_cover_times)
+// over t_opt, a cell first visited after the last note_time counting at
+// t_end and one never visited at the budget (0.5 for a lawnmower that
+// covers at a steady pace in T_opt). 0 when the target needs no cell.
+double coverage_area(const CoverageGrid& g, double t_end, double budget, double t_opt);
 
 }  // namespace chaosweep

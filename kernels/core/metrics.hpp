@@ -12,6 +12,9 @@ namespace chaosweep {
 // Reproduces the PR column of Table 1 (seed 000).
 inline double t_opt(double dc, double free_area, double sr, double v) { return dc * free_area / (sr * v); }
 
+// A run's robot-time budget: max_time, or max_pr T_opt when it is 0 (auto).
+inline double run_budget(const RunParams& p, double t_opt) { return p.max_time > 0 ? p.max_time : p.max_pr * t_opt; }
+
 // Smallest number of visited free cells k with k / free >= dc, computed
 // without trusting dc * free to round the right way.
 inline long cells_needed(double dc, long free_cells) {

@@ -45,7 +45,7 @@ ParamInfo system_param() {
   }();
   return added_later(ParamInfo{"system",
                                "chaotic system driving the Arnold planner family (planner = arnold): the Arnold "
-                               "flow, or a flow of kernels/systems/flows/ with coefficients sys_a..sys_d",
+                               "flow, or a flow (kernels/systems/flows/) or map (maps/) with coefficients sys_a..sys_d",
                                Kind::choice, 0, 0, false, names, [](const RunParams& p) { return double(p.system); },
                                [](RunParams& p, double v) { p.system = int(v); }});
 }
@@ -81,11 +81,11 @@ std::string_view coeff_help(int i) {
   static const std::vector<std::string> texts = [] {
     std::vector<std::string> t;
     for (int k = 0; k < 4; ++k) {
-      std::string s = "flow coefficient ";
+      std::string s = "system coefficient ";
       s.push_back(char('a' + k));
-      s.append(" (unset: the flow's default):");
+      s.append(" (unset: the system's default):");
       const char* sep = " ";
-      for_each_flow([&](auto tag) {
+      for_each_system([&](auto tag) {
         using F = typename decltype(tag)::type;
         if (k >= F::defaults.count) return;
         s.append(sep).append(F::name).append(" ").append(F::defaults.names[k]).append(" = ");

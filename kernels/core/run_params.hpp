@@ -53,7 +53,7 @@ struct RunParams {
   double sys_a = unset, sys_b = unset, sys_c = unset, sys_d = unset;
   // Arnold flow coefficients (docs/spec.md §2 defaults), and the initial
   // state of the system: unset, its default (Arnold (0, 1, 0), a flow's
-  // FlowDefaults::ic), per coordinate; read it with system_ic.
+  // SystemDefaults::ic), per coordinate; read it with system_ic.
   double A = 0.5, B = 0.25, C = 0.25;
   double ic_x = unset, ic_y = unset, ic_z = unset;
   int ds_index = 3;                         // heading = x (1), y (2) or z (3)
@@ -134,16 +134,16 @@ struct RunParams {
 inline double or_default(double v, double dflt) { return v != v ? dflt : v; }  // v != v: unset (NaN)
 
 inline Vec3<double> system_ic(const RunParams& p) {
-  const FlowDefaults d = system_defaults(p.system);
+  const SystemDefaults d = system_defaults(p.system);
   return {or_default(p.ic_x, d.ic[0]), or_default(p.ic_y, d.ic[1]), or_default(p.ic_z, d.ic[2])};
 }
 
 // sys_a..sys_d as set (NaN: unset).
-inline FlowCoeffs<double> set_flow_coeffs(const RunParams& p) { return {p.sys_a, p.sys_b, p.sys_c, p.sys_d}; }
+inline SystemCoeffs<double> set_system_coeffs(const RunParams& p) { return {p.sys_a, p.sys_b, p.sys_c, p.sys_d}; }
 
 // A flow's coefficients: sys_a..sys_d, each unset one the flow's default.
-inline FlowCoeffs<double> flow_coeffs(const RunParams& p) {
-  const FlowCoeffs<double> set = set_flow_coeffs(p), d = system_defaults(p.system).coeffs();
+inline SystemCoeffs<double> system_coeffs(const RunParams& p) {
+  const SystemCoeffs<double> set = set_system_coeffs(p), d = system_defaults(p.system).coeffs();
   return {or_default(set.a, d.a), or_default(set.b, d.b), or_default(set.c, d.c), or_default(set.d, d.d)};
 }
 
@@ -171,6 +171,7 @@ struct RunResult {
   std::int64_t reflections = 0;  // seed 003 mirror mapping; seed 002 bumps
   double visit_evenness = 0.0;   // Pielou evenness of cell entries over free cells (visit_evenness)
   double turn_entropy = 0.0;     // bits per turn between cell entries (turn_entropy)
+  double coverage_area = unset;  // mean first-visit time of the cells dc needs, over T_opt (coverage_area)
   double wall_time = 0.0;        // seconds of CPU wall clock (not part of the pure result)
   std::string message;           // why a run is invalid / errored
 };

@@ -49,6 +49,7 @@ struct LaneArrays {
   // (CoverageGrid's bytes, max_i + 1 per row), counts it and stamps t_last_new.
   unsigned char* cells[max_lanes];
   double visited[max_lanes], needed[max_lanes];
+  double cover_sum[max_lanes];  // CoverageGrid::cover_time_sum, each new cell's time added as it is marked
   // cell_k: the lane's cell (cell_j * (max_i + 1) + cell_i), kept by the
   // scalar code. Map zoning: Eq. 5's window (CoverageGrid::begin_window) —
   // an entered step stamps the cell it left and the one it entered with

@@ -13,12 +13,12 @@ Vec3<double> LaneBinding::lane_state(const LaneArrays& a, int l) const {
 }
 
 Trig3<double> LaneBinding::lane_trig(const LaneArrays& a, int l) const {
-  if (run_.sys_ != arnold_system) return run_.trig_;  // a flow carries no trig
+  if (run_.sys_ != arnold_system) return run_.trig_;  // a listed system carries no trig
   return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, run_.ds_);
 }
 
-// A flow's step inputs (LaneArrays::system): its state as labelled, no trig.
-void LaneBinding::write_flow_step(LaneArrays& a, int l) const {
+// A listed system's step inputs (LaneArrays::system): its state as labelled, no trig.
+void LaneBinding::write_system_step(LaneArrays& a, int l) const {
   a.x[l] = run_.u_.x;
   a.y[l] = run_.u_.y;
   a.z[l] = run_.u_.z;
@@ -36,7 +36,7 @@ void LaneBinding::write_flow_step(LaneArrays& a, int l) const {
 }
 
 void LaneBinding::write_lane(LaneArrays& a, int l) {
-  if (run_.sys_ != arnold_system) write_flow_step(a, l);
+  if (run_.sys_ != arnold_system) write_system_step(a, l);
   else write_arnold_step(a, l);
   write_robot(a, l);
 }
@@ -91,6 +91,7 @@ void LaneBinding::write_robot(LaneArrays& a, int l) {
   a.max_j[l] = run_.grid_.ny() - 1;
   a.cells[l] = run_.grid_.cell_bytes();
   a.visited[l] = run_.grid_.visited_cells();
+  a.cover_sum[l] = run_.grid_.cover_time_sum();
   a.stamp[l] = run_.grid_.window_stamps();
   a.window[l] = run_.grid_.window();
   a.region[l] = run_.grid_.region_of_cell();
@@ -119,6 +120,7 @@ void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
   run_.r_.steps = std::int64_t(a.steps[l]);
   run_.seg_step_ = int(a.seg_step[l]);
   run_.grid_.set_visited_cells(int(a.visited[l]));
+  run_.grid_.set_cover_time_sum(a.cover_sum[l]);
   run_.grid_.set_window_distinct(a.window_distinct[l]);
   run_.grid_.set_entry_state(a.cell_k[l], a.last_dir[l]);
   run_.last_visited_ = run_.grid_.visited_cells();
@@ -142,6 +144,7 @@ bool LaneBinding::lane_step(LaneArrays& a, int l) {
   a.seg_step[l] = run_.seg_step_;
   a.t_last_new[l] = run_.t_last_new_;
   a.visited[l] = run_.grid_.visited_cells();
+  a.cover_sum[l] = run_.grid_.cover_time_sum();
   lane_cell(a, l);
   lane_clearance<double>(a, l);
   return false;

@@ -43,7 +43,7 @@ class LaneBinding {
   // write_lane's parts: the system's step inputs (Arnold flow, relabelled,
   // or a flow), then the robot, clock, grid and fast-path inputs.
   void write_arnold_step(LaneArrays& a, int l) const;
-  void write_flow_step(LaneArrays& a, int l) const;
+  void write_system_step(LaneArrays& a, int l) const;
   void write_robot(LaneArrays& a, int l);
   // Lane l's cell and the window's distinct count, from the run.
   void lane_cell(LaneArrays& a, int l) const;

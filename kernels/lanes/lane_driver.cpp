@@ -119,7 +119,7 @@ class LaneDriver final : public LaneSink {
     a_.last_dir[l] = -1;
     a_.clear[l] = nullptr;
     a_.clear_here[l] = a_.clear_left[l] = a_.clear_right[l] = a_.clear_down[l] = a_.clear_up[l] = 0.0;
-    a_.visited[l] = 0.0;
+    a_.visited[l] = a_.cover_sum[l] = 0.0;
     a_.needed[l] = 1.0;
   }
 

@@ -129,7 +129,8 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
 // Marks the cells the `entered` lanes' applied steps entered, as
 // CoverageGrid::mark_segment (its mark_crossing across one edge marks the
 // cell left, then the one entered) and after_move would: the window's
-// stamps, a new cell counted (by zone too) and t_last_new stamped; returns
+// stamps, a new cell counted (by zone too), its time added to the
+// coverage-time sum and t_last_new stamped; returns
 // the lanes whose count reached dc. Scalar: a lane enters a cell about once
 // in 30 steps. A template on V only to keep each kernel file's copy its own
 // (tests/check_simd_symbols.sh).
@@ -160,6 +161,7 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
     if (a.region[l] != nullptr) ++a.region_visited[l][a.region[l][k]];
     a.t_last_new[l] = a.t[l];
     a.visited[l] += 1.0;
+    if (a.visited[l] <= a.needed[l]) a.cover_sum[l] += a.t[l];  // CoverageGrid::note_time: one cell at t
     if (a.visited[l] >= a.needed[l]) covered |= 1u << l;
   }
   return covered;
@@ -183,18 +185,18 @@ inline StepInput<V> load_step_input(const LaneArrays& a, int o) {
           lane_load<V>(a.small + o) == lane::splat<V>(1.0)};
 }
 
-// A flow lane's inputs to a step (system_list.hpp's flows: no relabelling,
+// A listed system's lane inputs to a step (system_list.hpp: no relabelling,
 // no carried trig; the heading coordinate by per-lane masks).
 template <class V>
-struct FlowInput {
+struct SystemInput {
   Vec3<V> u;
-  FlowCoeffs<V> k;
+  SystemCoeffs<V> k;
   HeadingSelect<V> hs;
   V h, h_pos;
 };
 
 template <class V>
-inline FlowInput<V> load_flow_input(const LaneArrays& a, int o) {
+inline SystemInput<V> load_system_input(const LaneArrays& a, int o) {
   const V ds = lane_load<V>(a.ds + o);
   return {{lane_load<V>(a.x + o), lane_load<V>(a.y + o), lane_load<V>(a.z + o)},
           {lane_load<V>(a.kA + o), lane_load<V>(a.kB + o), lane_load<V>(a.kC + o), lane_load<V>(a.kD + o)},
@@ -238,19 +240,19 @@ struct StepsDone {
 
 // Steps the lanes from the arrays' state, keeping it in registers, until a
 // step leaves the sink work; stores every lane's state after that step.
-// Flow: void for the Arnold flow (its own step), else a flow of
-// system_list.hpp (flow_rk4_step, Staged ignored).
+// Flow: void for the Arnold flow (its own step), else a flow or map of
+// system_list.hpp (system_step, Staged ignored).
 template <class V, int N, bool Staged, bool General, class Flow = void>
 inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
   constexpr bool arnold = std::is_void_v<Flow>;
   StepInput<V> in[N];
-  FlowInput<V> fin[N];
+  SystemInput<V> fin[N];
   FastPathInputs<V> fixed[N];
   for (int k = 0; k < N; ++k) {
     if constexpr (arnold) in[k] = load_step_input<V>(a, k * w);
-    else fin[k] = load_flow_input<V>(a, k * w);
+    else fin[k] = load_system_input<V>(a, k * w);
     fixed[k] = load_fast_path_inputs<V>(a, k * w);
   }
   StepsDone d;
@@ -259,10 +261,10 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
     Rk4Step<V> s[N];
     if constexpr (!arnold) {
       for (int k = 0; k < N; ++k) {
-        const FlowStep<V> f = flow_rk4_step<Flow>(fin[k].u, fin[k].k, fin[k].hs, fin[k].h, fin[k].h_pos);
+        const SystemStep<V> f = system_step<Flow>(fin[k].u, fin[k].k, fin[k].hs, fin[k].h, fin[k].h_pos);
         s[k].u = f.u;
         const V zero = lane::splat<V>(0.0);
-        s[k].t = Trig3<V>{zero, zero, zero, zero, zero, zero};  // a flow carries no trig
+        s[k].t = Trig3<V>{zero, zero, zero, zero, zero, zero};  // a listed system carries no trig
         s[k].dX = f.dX;
         s[k].dY = f.dY;
       }
@@ -308,7 +310,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
 // others.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
 // The lanes all run one system (a.system): the Arnold flow's step, or one
-// flow_rk4_step per vector for a flow.
+// system_step per vector for a flow or map.
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
@@ -318,7 +320,7 @@ template <class V, int N, bool Staged = false>
     if (a.system == arnold_system) {
       d = general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
     } else {  // every lane runs a.system (LaneArrays::system)
-      with_flow(a.system, [&](auto tag) {
+      with_system(a.system, [&](auto tag) {
         using F = typename decltype(tag)::type;
         d = general ? steps_until_sink<V, N, false, true, F>(a) : steps_until_sink<V, N, false, false, F>(a);
       });

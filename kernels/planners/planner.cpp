@@ -19,23 +19,29 @@ constexpr double max_cells = 1 << 28;
 
 std::string fmt(double v) { return format_number(v); }
 
-// A flow's coefficients are set only for a system that has them.
+// A system's coefficients are set only for a system that has them; a map
+// of two coordinates has no z to steer by or start from, and one iteration
+// per step has no half step to double.
 std::string check_system(const RunParams& p) {
+  const std::string sys = "system = " + std::string(system_name(p.system));
   if (p.system != arnold_system && p.planner != Planner::arnold)
-    return "system = " + std::string(system_name(p.system)) +
-           " drives only planner = arnold (planner = " + to_string(p.planner) + " has its own system)";
-  const FlowDefaults d = system_defaults(p.system);
-  const FlowCoeffs<double> set = set_flow_coeffs(p);
+    return sys + " drives only planner = arnold (planner = " + to_string(p.planner) + " has its own system)";
+  if (system_dimension(p.system) == 2 && p.ds_index == 3)
+    return "ds_index = 3 but " + sys + " has two coordinates: ds_index must be 1 (x) or 2 (y)";
+  if (system_dimension(p.system) == 2 && !std::isnan(p.ic_z) && p.ic_z != 0.0)  // rows record its z as 0
+    return "ic_z = " + fmt(p.ic_z) + " but " + sys + " has two coordinates (x, y): ic_z must be unset or 0";
+  if (system_is_map(p.system) && p.integrator == Integrator::rk4_doubling)
+    return "integrator = rk4-doubling but " + sys + " is a map (one iteration per step): use integrator = rk4";
+  const SystemDefaults d = system_defaults(p.system);
+  const SystemCoeffs<double> set = set_system_coeffs(p);
   for (int k = 0; k < 4; ++k) {
     if (std::isnan(set.at(k)) || k < d.count) continue;
     const std::string name = std::string("sys_") + char('a' + k);
-    if (d.count == 0)
-      return name + " is set but system = " + std::string(system_name(p.system)) +
-             " has no flow coefficients (the Arnold flow takes A, B, C)";
+    if (d.count == 0) return name + " is set but " + sys + " has no sys_* coefficients (the Arnold flow takes A, B, C)";
     std::string have;
     for (int i = 0; i < d.count; ++i) have += std::string(i ? ", " : "") + d.names[i];
-    return name + " is set but system = " + std::string(system_name(p.system)) + " has " + std::to_string(d.count) +
-           " coefficients (" + have + " as sys_a.." + char('a' + d.count - 1) + ")";
+    return name + " is set but " + sys + " has " + std::to_string(d.count) + " coefficients (" + have + " as sys_a.." +
+           char('a' + d.count - 1) + ")";
   }
   return {};
 }
@@ -82,6 +88,7 @@ bool prepare_run(const RunParams& p, const Environment& env, std::optional<Cover
     return false;
   }
   r.t_opt = t_opt(p.dc, env.lx * env.ly - env.obstacle_area(), p.sr, p.v);
+  grid->count_cover_times(cells_needed(p, *grid));
   return true;
 }
 
@@ -90,6 +97,7 @@ void conclude_run(const RunParams& p, const CoverageGrid& grid, RunResult& r) {
   r.final_coverage = coverage_rate(p, grid, grid.visited_cells());
   r.visit_evenness = visit_evenness(grid);
   r.turn_entropy = turn_entropy(grid);
+  r.coverage_area = coverage_area(grid, r.t_end, run_budget(p, r.t_opt), r.t_opt);
   if (r.status == Status::ok) r.pr = r.coverage_time / r.t_opt;
 }
 

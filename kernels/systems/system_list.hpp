@@ -1,70 +1,99 @@
 #pragma once
 // The chaotic systems the seed-000 planner family can be driven by: the
 // Arnold flow (index 0, its own step in arnold_flow.hpp) and the flows of
-// flows/ (index 1, 2, ... in the order of `Flows`). A run names its system
-// by that index (RunParams::system; the spec by the flow's name). Adding a
-// flow is adding its header and its name here: the parameter table, the
-// scalar planner and every lane width take it from this list.
+// flows/ and maps of maps/ (index 1, 2, ... in the order of
+// `ListedSystems`). A run names its system by that index (RunParams::system;
+// the spec by the system's name). Adding a system is adding its header and
+// its name here: the parameter table, the scalar planner and every lane
+// width take it from this list (docs/add_a_system.md).
 #include <string_view>
 
+#include "kernels/systems/chaotic_map.hpp"
+#include "kernels/systems/flow.hpp"
 #include "kernels/systems/flows/chen.hpp"
 #include "kernels/systems/flows/chua.hpp"
 #include "kernels/systems/flows/lorenz.hpp"
+#include "kernels/systems/maps/chirikov.hpp"
 
 namespace chaosweep {
 
 template <class... F>
-struct FlowList {
+struct SystemList {
   static constexpr int size = sizeof...(F);
 };
 
-using Flows = FlowList<Lorenz, Chen, Chua>;
+using ListedSystems = SystemList<Lorenz, Chen, Chua, Chirikov>;
 
 inline constexpr int arnold_system = 0;
 inline constexpr double arnold_ic[3] = {0.0, 1.0, 0.0};  // docs/spec.md §2
-inline constexpr int system_count = 1 + Flows::size;
+inline constexpr int system_count = 1 + ListedSystems::size;
 
 template <class F>
-struct FlowTag {
+struct SystemTag {
   using type = F;
 };
 
 namespace system_detail {
 template <class Fn, class F, class... Rest>
-inline void visit(int k, Fn&& fn, FlowList<F, Rest...>) {
-  if (k == 0) fn(FlowTag<F>{});
-  else if constexpr (sizeof...(Rest) > 0) visit(k - 1, fn, FlowList<Rest...>{});
+inline void visit(int k, Fn&& fn, SystemList<F, Rest...>) {
+  if (k == 0) fn(SystemTag<F>{});
+  else if constexpr (sizeof...(Rest) > 0) visit(k - 1, fn, SystemList<Rest...>{});
 }
 template <class Fn, class... F>
-inline void each(Fn&& fn, FlowList<F...>) {
-  (fn(FlowTag<F>{}), ...);
+inline void each(Fn&& fn, SystemList<F...>) {
+  (fn(SystemTag<F>{}), ...);
 }
 }  // namespace system_detail
 
-// Calls fn(FlowTag<F>{}) for the flow of system index s (1..); nothing for
+// Calls fn(SystemTag<F>{}) for the system of index s (1..); nothing for
 // the Arnold flow (0) or an index out of range.
 template <class Fn>
-inline void with_flow(int s, Fn&& fn) {
-  if (s >= 1 && s < system_count) system_detail::visit(s - 1, fn, Flows{});
+inline void with_system(int s, Fn&& fn) {
+  if (s >= 1 && s < system_count) system_detail::visit(s - 1, fn, ListedSystems{});
 }
 
-// Calls fn(FlowTag<F>{}) for every flow, in index order.
+// Calls fn(SystemTag<F>{}) for every listed system, in index order.
 template <class Fn>
-inline void for_each_flow(Fn&& fn) {
-  system_detail::each(fn, Flows{});
+inline void for_each_system(Fn&& fn) {
+  system_detail::each(fn, ListedSystems{});
 }
 
 inline std::string_view system_name(int s) {
   std::string_view n = s == arnold_system ? "arnold" : "?";
-  with_flow(s, [&](auto tag) { n = decltype(tag)::type::name; });
+  with_system(s, [&](auto tag) { n = decltype(tag)::type::name; });
   return n;
 }
 
-// A system's defaults (the Arnold flow: no flow coefficients, its ic).
-inline FlowDefaults system_defaults(int s) {
-  FlowDefaults d{0, 0, 0, 0, 0, {"", "", "", ""}, {arnold_ic[0], arnold_ic[1], arnold_ic[2]}};
-  with_flow(s, [&](auto tag) { d = decltype(tag)::type::defaults; });
+// A system's defaults (the Arnold flow: no listed coefficients, its ic).
+inline SystemDefaults system_defaults(int s) {
+  SystemDefaults d{0, 0, 0, 0, 0, {"", "", "", ""}, {arnold_ic[0], arnold_ic[1], arnold_ic[2]}};
+  with_system(s, [&](auto tag) { d = decltype(tag)::type::defaults; });
   return d;
+}
+
+// One step of listed system F: an RK4 step of h for a flow, one iteration
+// for a map; the robot moves h_pos along the heading.
+template <class F, class T>
+inline SystemStep<T> system_step(const Vec3<T>& u, const SystemCoeffs<T>& k, const HeadingSelect<T>& hs, T h, T h_pos) {
+  if constexpr (ChaoticMap<F>) return map_step<F>(u, k, hs, h_pos);
+  else return flow_rk4_step<F>(u, k, hs, h, h_pos);
+}
+
+// The number of coordinates a system has (a map may have 2: its z is
+// unused and DSindex 3 means nothing), and whether it is a map (one
+// iteration per step: step doubling means nothing).
+inline int system_dimension(int s) {
+  int n = 3;
+  with_system(s, [&](auto tag) {
+    using F = typename decltype(tag)::type;
+    if constexpr (requires { F::dimension; }) n = F::dimension;
+  });
+  return n;
+}
+inline bool system_is_map(int s) {
+  bool m = false;
+  with_system(s, [&](auto tag) { m = ChaoticMap<typename decltype(tag)::type>; });
+  return m;
 }
 
 }  // namespace chaosweep

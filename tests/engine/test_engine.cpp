@@ -608,8 +608,8 @@ TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // map, which the lanes fold in full), obstacles (with and without map
   // zoning, under both boundaries, every obstacle response), the scalar-only paths
   // (step doubling, Logistic, Chebyshev), a run outside small-shift mode (dt = 0.5),
-  // an invalid run and the flows of kernels/systems/flows/ (each system's runs
-  // in lanes of their own), mixed in one batch.
+  // an invalid run and the flows and maps of kernels/systems/ (each system's
+  // runs in lanes of their own), mixed in one batch.
   const SweepSpec s = parse_sweep_spec(R"(
 case = [
   { label = "original" },
@@ -642,6 +642,8 @@ case = [
   { label = "lorenz-fold-y", system = "lorenz", boundary = "fold", dt = 0.001, f = 100, ds_index = 2 },
   { label = "chen-obstacles", system = "chen", dt = 0.001, f = 100, env = "five_squares", start = [4.8, 1.6] },
   { label = "chua-mz-is", system = "chua", sys_a = 9.5, index_switching = 1, map_zoning = 1, c = 0.8, dt = 0.002, f = 50, ds_index = 1, env = "one_square", start = [1, 8] },
+  { label = "chirikov", system = "chirikov", ds_index = 1, dt = 1 },
+  { label = "chirikov-is-obstacles", system = "chirikov", ds_index = 2, index_switching = 1, dt = 0.5, env = "five_squares", start = [4.8, 1.6] },
 ]
 [fixed]
 size = 16
@@ -683,15 +685,16 @@ A = [0.45, 0.5]
   EXPECT_GT(ok, 5);  // most of these runs reach dc: the comparison covers whole runs
   EXPECT_EQ(reference[28].result.status, Status::invalid);                             // case 14 of 17, A = 0.45
   EXPECT_EQ(reference[26].result.status, Status::ok) << reference[26].result.message;  // the Chebyshev run
-  // The flows' runs (the last four cases, mixed with Arnold runs in every
-  // batch: the lanes take one system at a time): the Lorenz ones reach dc,
-  // the others run to the budget; both compare whole runs.
-  int flows_ok = 0;
-  for (std::size_t i = reference.size() - 8; i < reference.size(); ++i) {
-    flows_ok += reference[i].result.status == Status::ok;
+  // The flows' and maps' runs (the last six cases, mixed with Arnold runs in
+  // every batch: the lanes take one system at a time): the Lorenz and
+  // Chirikov ones reach dc, the others run to the budget; both compare whole
+  // runs.
+  int systems_ok = 0;
+  for (std::size_t i = reference.size() - 12; i < reference.size(); ++i) {
+    systems_ok += reference[i].result.status == Status::ok;
     EXPECT_GT(reference[i].result.visited_cells, 40) << reference[i].tuple.label;
   }
-  EXPECT_GE(flows_ok, 4);
+  EXPECT_GE(systems_ok, 6);
 }
 
 TEST(SimdChoice, HonoursAndChecksChaosweepSimd) {

@@ -1,14 +1,15 @@
 // Kernels: the path metrics every planner gets from the coverage grid
 // (docs/spec.md §1, "Path metrics"): visits counted per cell entry, turns
 // between successive entries, Pielou's evenness of the visits over the free
-// cells and the entropy of the turns, on hand-made paths whose values are
-// known, and on runs of the planners.
+// cells, the entropy of the turns and the coverage-time area, on hand-made
+// paths whose values are known, and on runs of the planners.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
 #include "kernels/core/coverage_grid.hpp"
+#include "kernels/core/metrics.hpp"
 #include "kernels/planners/planner.hpp"
 #include "tests/support/kernel_test_util.hpp"
 
@@ -88,5 +89,48 @@ TEST(PathMetrics, EveryPlannerReportsThemInItsResult) {
     EXPECT_LT(r.visit_evenness, 1.0) << to_string(planner);
     EXPECT_GT(r.turn_entropy, 0.1) << to_string(planner);
     EXPECT_LE(r.turn_entropy, 2.0) << to_string(planner);
+    // The mean first-visit time of the cells dc needs lies between 0 and
+    // the time the last of them was visited (CT, or the budget).
+    EXPECT_GT(r.coverage_area, 0.0) << to_string(planner);
+    const double last = r.status == Status::ok ? r.coverage_time : r.t_end;
+    EXPECT_LT(r.coverage_area, std::max(last, run_budget(p, r.t_opt)) / r.t_opt) << to_string(planner);
+    if (r.status == Status::ok) EXPECT_LT(r.coverage_area, r.pr) << to_string(planner);
   }
+}
+
+TEST(PathMetrics, CoverageAreaIsTheMeanFirstVisitTimeOfTheCellsTheTargetNeeds) {
+  const Environment env = square_map(4.0);
+  CoverageGrid g(env, 1.0);
+  g.count_cover_times(5);  // dc needs 5 of the 16 cells
+  g.mark_cell(0, 0);
+  g.note_time(0.0);  // the start
+  g.mark_cell(1, 0);
+  g.mark_cell(2, 0);
+  g.note_time(3.0);  // two cells in one move, both at its end
+  g.mark_cell(2, 0);
+  g.note_time(4.0);  // a cell seen before counts once, at its first visit
+  g.mark_cell(3, 0);
+  g.note_time(6.0);
+  EXPECT_EQ(g.cover_noted(), 4);
+  EXPECT_DOUBLE_EQ(g.cover_time_sum(), 0.0 + 3.0 + 3.0 + 6.0);
+  // One cell short: counted at the budget (40), over 5 cells and T_opt 8.
+  EXPECT_DOUBLE_EQ(coverage_area(g, 7.0, 40.0, 8.0), (12.0 + 40.0) / (5 * 8.0));
+  // A cell marked after the last note counts at the run's end.
+  g.mark_cell(3, 1);
+  EXPECT_DOUBLE_EQ(coverage_area(g, 7.0, 40.0, 8.0), (12.0 + 7.0) / (5 * 8.0));
+  g.note_time(7.5);
+  // Cells beyond the target's count nothing.
+  g.mark_cell(3, 2);
+  g.note_time(9.0);
+  EXPECT_EQ(g.cover_noted(), 5);
+  EXPECT_DOUBLE_EQ(coverage_area(g, 9.0, 40.0, 8.0), (12.0 + 7.5) / (5 * 8.0));
+  // A lawnmower that enters one new cell per second covers n cells with a
+  // mean first-visit time (n - 1) / 2 s: near T_opt / 2 (T_opt = n s here).
+  CoverageGrid m(env, 1.0);
+  m.count_cover_times(16);
+  for (int k = 0; k < 16; ++k) {
+    m.mark_cell(k % 4, k / 4);
+    m.note_time(double(k));
+  }
+  EXPECT_DOUBLE_EQ(coverage_area(m, 15.0, 320.0, 16.0), 7.5 / 16.0);
 }

@@ -342,6 +342,8 @@ TEST(IndexSwitching, CyclesDsIndex) {
   EXPECT_EQ(next_ds_index(1), 2);
   EXPECT_EQ(next_ds_index(2), 3);
   EXPECT_EQ(next_ds_index(3), 1);
+  EXPECT_EQ(next_ds_index(1, 2), 2);  // a two-coordinate map (Henon)
+  EXPECT_EQ(next_ds_index(2, 2), 1);
 }
 
 TEST(IndexSwitching, SwitchesWhenASegmentAddsNoCell) {

@@ -10,7 +10,8 @@ inline bool eq5_keep_exploring(long c_n, long c_nn, long c_u, long c_t, double c
   return double(c_n) * double(c_t) >= c * double(c_u) * double(c_nn);
 }
 
-// Orientation control: DSindex <- DSindex mod 3 + 1.
-inline int next_ds_index(int ds) { return ds % 3 + 1; }
+// Orientation control: DSindex <- DSindex mod 3 + 1 (mod 2 + 1 for a
+// system of two coordinates).
+inline int next_ds_index(int ds, int dimension = 3) { return ds % dimension + 1; }
 
 }  // namespace chaosweep

@@ -45,10 +45,10 @@ PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid&
       r_(r),
       trace_(trace),
       needed_(cells_needed(p, grid)),
-      budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
+      budget_(run_budget(p, r.t_opt)),
       k_{p.A, p.B, p.C},
       sys_(p.system),
-      fk_(flow_coeffs(p)),
+      fk_(system_coeffs(p)),
       u_(initial_state(p)),
       trig_(trig3(u_)),
       ds_(p.ds_index),
@@ -60,6 +60,7 @@ PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid&
   // Only map zoning uses the zones (their setup was 60% of a 200 m map's).
   if (p.map_zoning) zones();
   last_visited_ = grid_.visited_cells();
+  grid_.note_time(0.0);  // the start cell
   if (trace_) trace_->point({0.0, robot_.x(), robot_.y(), SegmentKind::start, ds_});
 }
 
@@ -119,7 +120,7 @@ void PlannerRun::end_segment() {
   if (!keep_exploring) {
     map_zoning();
   } else if (p_.index_switching && c_n <= p_.switch_min_new) {
-    ds_ = next_ds_index(ds_);
+    ds_ = next_ds_index(ds_, system_dimension(sys_));
     ++r_.index_switches;
   }
   if (!ended_) begin_segment();
@@ -181,11 +182,11 @@ void PlannerRun::arnold_step() {
     });
     return;
   }
-  with_flow(sys_, [&](auto tag) {
+  with_system(sys_, [&](auto tag) {
     using F = typename decltype(tag)::type;
     take_point([&](const Vec3<double>& u, const Trig3<double>& t, double h, double h_pos) {
-      const FlowStep<double> s = flow_rk4_step<F>(u, fk_, hs, h, h_pos);
-      return Rk4Step<double>{s.u, t, s.dX, s.dY};  // a flow carries no trig
+      const SystemStep<double> s = system_step<F>(u, fk_, hs, h, h_pos);
+      return Rk4Step<double>{s.u, t, s.dX, s.dY};  // a listed system carries no trig
     });
   });
 }

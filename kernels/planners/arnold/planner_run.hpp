@@ -82,8 +82,8 @@ class PlannerRun {
   long needed_;
   double budget_;
   ArnoldCoeffs<double> k_;
-  int sys_;                // RunParams::system
-  FlowCoeffs<double> fk_;  // a flow's coefficients (flow_coeffs)
+  int sys_;                  // RunParams::system
+  SystemCoeffs<double> fk_;  // a flow's coefficients (system_coeffs)
   Vec3<double> u_;
   // Trig of u_, carried by rk4_step. u_ changes by RK4 steps alone (not by
   // switching, zoning or transits); full sincos at the start and at every
@@ -108,6 +108,7 @@ inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
   if (grid_.visited_cells() != last_visited_) {
     last_visited_ = grid_.visited_cells();
     t_last_new_ = t_;
+    grid_.note_time(t_);
   }
   if (!std::isfinite(robot_.x()) || !std::isfinite(robot_.y())) end(Status::diverged, "non-finite position");
   else if (grid_.visited_cells() >= needed_) end(Status::ok);

@@ -44,10 +44,11 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
   for (const Policy& q : pol) total += q.alpha;
   std::uint64_t rng = std::uint64_t(p.seed) * 0x9e3779b97f4a7c15ULL + 0x2545f4914f6cdd1dULL;
   const long needed = cells_needed(p, grid);
-  const double budget = p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt;
+  const double budget = run_budget(p, r.t_opt);
   constexpr double deg = std::numbers::pi / 180.0;
   double x = p.start_x, y = p.start_y, heading = p.bounce_heading, t = 0;
   grid.mark_point(x, y);
+  grid.note_time(0.0);
   if (trace) trace->point({0.0, x, y, SegmentKind::start, 0});
   // A robot boxed in (every heading bumps) would turn for ever: bounded.
   long bumps_in_a_row = 0;
@@ -83,6 +84,7 @@ void run_bouncing(const RunParams& p, const Environment& env, CoverageGrid& grid
       }
       x = nx, y = ny;
       t += dt;
+      grid.note_time(t);  // nothing new unless the move entered a cell
       ++steps;
       bumps_in_a_row = 0;
       if (trace) trace->point({t, x, y, SegmentKind::arnold, 0});

@@ -28,12 +28,13 @@ class ChebyshevRun {
         trace_(trace),
         d_(decompose_free_space(env, p.radius)),
         needed_(cells_needed(p, grid)),
-        budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
+        budget_(run_budget(p, r.t_opt)),
         x_(p.cheb_x0),
         y_(p.cheb_y0),
         px_(p.start_x),
         py_(p.start_y) {
     grid_.mark_point(px_, py_);
+    grid_.note_time(0.0);
     if (trace_) trace_->point({0.0, px_, py_, SegmentKind::start, 0});
     // Each rectangle's share of a loop's sub-goals, by area (at least one).
     double total = 0;
@@ -154,6 +155,7 @@ class ChebyshevRun {
       }
       x = nx, y = ny;
       t += move_time;
+      if (entered) grid_.note_time(t);
       if (last) ++r_.subgoals;
       if (trace) trace->point({t, x, y, last && kind == SegmentKind::chebyshev ? SegmentKind::subgoal : kind, 0});
       if (entered && covered()) return stop(), end(Status::ok);

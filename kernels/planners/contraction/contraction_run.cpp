@@ -76,6 +76,7 @@ void run_contraction(const RunParams& p, const Environment& env, CoverageGrid& g
       grid.mark_segment(path[i - 1].x, path[i - 1].y, q.x, q.y);
       t += std::hypot(q.x - path[i - 1].x, q.y - path[i - 1].y) / p.v;
     }
+    grid.note_time(t);
     if (trace) trace->point({t, q.x, q.y, i == 0 ? SegmentKind::start : SegmentKind::arnold, p.ds_index});
     if (!reached && grid.visited_cells() >= needed) {
       reached = true;

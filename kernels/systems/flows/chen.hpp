@@ -7,9 +7,9 @@ namespace chaosweep {
 
 struct Chen {
   static constexpr const char* name = "chen";
-  static constexpr FlowDefaults defaults{35.0, 3.0, 28.0, 0.0, 3, {"a", "b", "c", ""}, {0.0, 1.0, 0.0}};
+  static constexpr SystemDefaults defaults{35.0, 3.0, 28.0, 0.0, 3, {"a", "b", "c", ""}, {0.0, 1.0, 0.0}};
   template <class T>
-  static Vec3<T> rhs(const Vec3<T>& u, const FlowCoeffs<T>& k) {
+  static Vec3<T> rhs(const Vec3<T>& u, const SystemCoeffs<T>& k) {
     using lane::fma;
     return {k.a * (u.y - u.x), fma(k.c - k.a, u.x, fma(k.c, u.y, -(u.x * u.z))), fma(u.x, u.y, -(k.b * u.z))};
   }

@@ -10,10 +10,10 @@ struct Chua {
   static constexpr const char* name = "chua";
   // The initial state lies in the double scroll's basin: the piecewise-linear
   // circuit's orbits from (0, 1, 0) grow without bound.
-  static constexpr FlowDefaults defaults{15.6,           28.0, -8.0 / 7.0, -5.0 / 7.0, 4, {"alpha", "beta", "m0", "m1"},
-                                         {0.7, 0.0, 0.0}};
+  static constexpr SystemDefaults defaults{
+      15.6, 28.0, -8.0 / 7.0, -5.0 / 7.0, 4, {"alpha", "beta", "m0", "m1"}, {0.7, 0.0, 0.0}};
   template <class T>
-  static Vec3<T> rhs(const Vec3<T>& u, const FlowCoeffs<T>& k) {
+  static Vec3<T> rhs(const Vec3<T>& u, const SystemCoeffs<T>& k) {
     using lane::fma;
     const T one = lane::splat<T>(1.0);
     const T kink = flow_abs(u.x + one) - flow_abs(u.x - one);
