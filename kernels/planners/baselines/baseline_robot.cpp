@@ -1,0 +1,73 @@
+#include "kernels/planners/baselines/baseline_robot.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/core/metrics.hpp"
+
+namespace chaosweep {
+
+BaselineRobot::BaselineRobot(const RunParams& p, CoverageGrid& grid, RunResult& r, TraceSink* trace)
+    : grid_(grid),
+      r_(r),
+      trace_(trace),
+      needed_(cells_needed(p, grid)),
+      budget_(p.max_time > 0 ? p.max_time : p.max_pr * r.t_opt),
+      step_(p.step),
+      v_(p.v),
+      points_(p.sampling == Sampling::points),
+      x_(p.start_x),
+      y_(p.start_y),
+      ci_(grid.cell_x(p.start_x)),
+      cj_(grid.cell_y(p.start_y)) {
+  grid_.mark_point(x_, y_);
+  if (trace_) trace_->point({0.0, x_, y_, SegmentKind::start, 0});
+  if (grid_.visited_cells() >= needed_) end(Status::ok);
+}
+
+void BaselineRobot::move(double nx, double ny, double dt, SegmentKind kind) {
+  t_ += dt;  // the move's end time, known before its cells are marked
+  ++moves_;
+  // A move that stays in the robot's cell marks nothing: that cell was
+  // marked when the robot entered it, and a cell is convex.
+  const int ni = grid_.cell_x(nx), nj = grid_.cell_y(ny);
+  const bool entered = ni != ci_ || nj != cj_;
+  if (entered) {
+    if (points_) grid_.mark_cell(ni, nj);
+    else grid_.mark_segment(x_, y_, nx, ny);
+    ci_ = ni, cj_ = nj;
+  }
+  x_ = nx, y_ = ny;
+  if (trace_) trace_->point({t_, x_, y_, kind, 0});
+  if (entered && grid_.visited_cells() >= needed_) end(Status::ok);
+  else if (t_ >= budget_) end(Status::timeout, "budget reached before dc");
+}
+
+void BaselineRobot::walk_to(double gx, double gy, SegmentKind kind) {
+  const double dist = std::hypot(gx - x_, gy - y_);
+  if (ended_ || dist == 0) return;
+  // Equal moves (dist / moves up to rounding), each charged that length:
+  // one hypot per walk, and positions interpolated from the walk's start
+  // so that rounding does not accumulate along a lane.
+  const long moves = std::max<long>(1, long(std::ceil(dist / step_)));
+  const double dt = dist / double(moves) / v_;
+  const double sx = x_, sy = y_;
+  for (long m = 1; m <= moves && !ended_; ++m) {
+    const double f = double(m) / double(moves);
+    if (m == moves) move(gx, gy, dt, kind);
+    else move(sx + f * (gx - sx), sy + f * (gy - sy), dt, kind);
+  }
+}
+
+void BaselineRobot::end(Status s, const char* why) {
+  if (ended_) return;
+  ended_ = true;
+  r_.status = s;
+  if (why) r_.message = why;
+  if (s == Status::ok) r_.coverage_time = t_;
+  r_.t_end = t_;
+  r_.steps = moves_;
+  r_.final_x = x_, r_.final_y = y_;
+}
+
+}  // namespace chaosweep
