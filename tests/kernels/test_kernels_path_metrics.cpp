@@ -78,8 +78,8 @@ TEST(PathMetrics, BlockedCellsAreNotInTheEvennessAndAJumpTakesItsLongerAxis) {
 }
 
 TEST(PathMetrics, EveryPlannerReportsThemInItsResult) {
-  for (Planner planner :
-       {Planner::arnold, Planner::logistic, Planner::chebyshev, Planner::bouncing, Planner::contraction}) {
+  for (Planner planner : {Planner::arnold, Planner::logistic, Planner::chebyshev, Planner::bouncing,
+                          Planner::contraction, Planner::random_walk, Planner::random_bounce, Planner::lawnmower}) {
     RunParams p = small_run();
     p.planner = planner;
     const RunResult r = run_planner(p, square_map(p.size_x));

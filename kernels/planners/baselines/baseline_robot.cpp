@@ -47,15 +47,16 @@ void BaselineRobot::walk_to(double gx, double gy, SegmentKind kind) {
   const double dist = std::hypot(gx - x_, gy - y_);
   if (ended_ || dist == 0) return;
   // Equal moves (dist / moves up to rounding), each charged that length:
-  // one hypot per walk, and positions interpolated from the walk's start
-  // so that rounding does not accumulate along a lane.
+  // one hypot per walk. Positions are interpolated from the walk's start,
+  // m * d / moves rounded once, so that no rounding accumulates along a
+  // lane and a position the grid has exactly (a cell's edge) is hit
+  // exactly: coverage times are exact on a grid of binary fractions.
   const long moves = std::max<long>(1, long(std::ceil(dist / step_)));
   const double dt = dist / double(moves) / v_;
-  const double sx = x_, sy = y_;
+  const double sx = x_, sy = y_, dx = gx - sx, dy = gy - sy;
   for (long m = 1; m <= moves && !ended_; ++m) {
-    const double f = double(m) / double(moves);
     if (m == moves) move(gx, gy, dt, kind);
-    else move(sx + f * (gx - sx), sy + f * (gy - sy), dt, kind);
+    else move(sx + double(m) * dx / double(moves), sy + double(m) * dy / double(moves), dt, kind);
   }
 }
 
