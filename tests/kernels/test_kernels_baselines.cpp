@@ -61,6 +61,13 @@ void expect_segment_free(const Environment& env, const TracePoint& a, const Trac
   }
 }
 
+// A run that must reach its dc, its trajectory to `sink` (may be null).
+RunResult run_ok(const RunParams& p, const Environment& env, Points* sink = nullptr) {
+  const RunResult r = run_planner(p, env, sink);
+  EXPECT_EQ(r.status, Status::ok) << to_string(p.planner) << " on " << env.name << ": " << r.message;
+  return r;
+}
+
 void expect_path_free(const Environment& env, const Points& sink) {
   ASSERT_GT(sink.pts.size(), 10u);
   for (std::size_t k = 1; k < sink.pts.size(); ++k) expect_segment_free(env, sink.pts[k - 1], sink.pts[k]);
@@ -104,14 +111,11 @@ TEST(BaselineLawnmower, ReachesEveryFreeCellOfObstacleMapsWithoutEnteringAnObsta
     RunParams p = baseline(Planner::lawnmower, 1.0);
     p.dc = 1;
     Points sink;
-    const RunResult r = run_planner(p, env, &sink);
-    ASSERT_EQ(r.status, Status::ok) << r.message;
-    EXPECT_EQ(r.visited_cells, r.free_cells);
+    EXPECT_EQ(run_ok(p, env, &sink).visited_cells, run_ok(p, env).free_cells);
     expect_path_free(env, sink);
     // dc = 0.9, as the benchmark runs it: within the 1-2 T_opt of a lawnmower.
     p.dc = 0.9;
-    const RunResult q = run_planner(p, env);
-    ASSERT_EQ(q.status, Status::ok) << q.message;
+    const RunResult q = run_ok(p, env);
     EXPECT_GT(q.pr, 0.9);
     EXPECT_LT(q.pr, 1.5);
   }
@@ -239,16 +243,15 @@ TEST(BaselineRandomBounce, IsAPureFunctionOfItsSeedAndStopsOnlyInTheFreeSpace) {
     RunParams p = baseline(Planner::random_bounce, 1.0);
     p.step = 0.25;
     Points sink;
-    const RunResult a = run_planner(p, env, &sink);
-    ASSERT_EQ(a.status, Status::ok) << a.message;
-    EXPECT_EQ(run_planner(p, env).coverage_time, a.coverage_time);
+    const double ct = run_ok(p, env, &sink).coverage_time;
+    EXPECT_EQ(run_planner(p, env).coverage_time, ct);
     ASSERT_GT(sink.pts.size(), 1000u);
     for (const TracePoint& q : sink.pts) {
       ASSERT_TRUE(q.x > 0 && q.x < env.lx && q.y > 0 && q.y < env.ly) << q.x << ", " << q.y;
       ASSERT_LT(env.obstacle_at(q.x, q.y), 0) << q.x << ", " << q.y;
     }
     p.seed = 7;
-    EXPECT_NE(run_planner(p, env).coverage_time, a.coverage_time);
+    EXPECT_NE(run_ok(p, env).coverage_time, ct);
   }
 }
 

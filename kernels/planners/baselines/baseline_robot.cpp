@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kernels/core/metrics.hpp"
+#include "kernels/core/run_end.hpp"
 
 namespace chaosweep {
 
@@ -18,8 +19,7 @@ BaselineRobot::BaselineRobot(const RunParams& p, CoverageGrid& grid, RunResult& 
       points_(p.sampling == Sampling::points),
       x_(p.start_x),
       y_(p.start_y),
-      ci_(grid.cell_x(p.start_x)),
-      cj_(grid.cell_y(p.start_y)) {
+      cell_(grid, p.start_x, p.start_y) {
   grid_.mark_point(x_, y_);
   if (trace_) trace_->point({0.0, x_, y_, SegmentKind::start, 0});
   if (grid_.visited_cells() >= needed_) end(Status::ok);
@@ -28,15 +28,7 @@ BaselineRobot::BaselineRobot(const RunParams& p, CoverageGrid& grid, RunResult& 
 void BaselineRobot::move(double nx, double ny, double dt, SegmentKind kind) {
   t_ += dt;  // the move's end time, known before its cells are marked
   ++moves_;
-  // A move that stays in the robot's cell marks nothing: that cell was
-  // marked when the robot entered it, and a cell is convex.
-  const int ni = grid_.cell_x(nx), nj = grid_.cell_y(ny);
-  const bool entered = ni != ci_ || nj != cj_;
-  if (entered) {
-    if (points_) grid_.mark_cell(ni, nj);
-    else grid_.mark_segment(x_, y_, nx, ny);
-    ci_ = ni, cj_ = nj;
-  }
+  const bool entered = cell_.mark_move(grid_, points_, x_, y_, nx, ny);
   x_ = nx, y_ = ny;
   if (trace_) trace_->point({t_, x_, y_, kind, 0});
   if (entered && grid_.visited_cells() >= needed_) end(Status::ok);
@@ -63,12 +55,8 @@ void BaselineRobot::walk_to(double gx, double gy, SegmentKind kind) {
 void BaselineRobot::end(Status s, const char* why) {
   if (ended_) return;
   ended_ = true;
-  r_.status = s;
-  if (why) r_.message = why;
-  if (s == Status::ok) r_.coverage_time = t_;
-  r_.t_end = t_;
+  record_end(r_, s, why, t_, x_, y_);
   r_.steps = moves_;
-  r_.final_x = x_, r_.final_y = y_;
 }
 
 }  // namespace chaosweep

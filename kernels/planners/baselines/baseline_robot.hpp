@@ -5,6 +5,7 @@
 // other planners of the common model (docs/spec.md §1).
 #include <cstdint>
 
+#include "kernels/core/cell_tracker.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/run_params.hpp"
 #include "kernels/core/trace.hpp"
@@ -37,7 +38,7 @@ class BaselineRobot {
   const double budget_, step_, v_;
   const bool points_;  // sampling = points: a move marks only its end's cell
   double x_, y_, t_ = 0;
-  int ci_, cj_;  // the robot's cell, marked already
+  CellTracker cell_;
   std::int64_t moves_ = 0;
   bool ended_ = false;
 };
