@@ -42,12 +42,12 @@ class LawnmowerRun {
         }
         for (int corner = 0; corner < corners; ++corner) {
           std::vector<Point> way = boustrophedon(lanes, corner);
-          const double l = transit_.distance_to(way.front());
+          const double l = transit_.distance_to(way.front(), int(k));
           if (l < nearest) nearest = l, region = int(k), path = std::move(way);
         }
       }
       if (region < 0) return robot_.end(Status::stuck, "every lane the lawnmower can reach is driven, short of dc");
-      for (const Point& q : transit_.path_to(path.front())) robot_.walk_to(q.x, q.y, SegmentKind::transit);
+      for (const Point& q : transit_.path_to(path.front(), region)) robot_.walk_to(q.x, q.y, SegmentKind::transit);
       for (const Point& q : path) robot_.walk_to(q.x, q.y, SegmentKind::move);
       done[std::size_t(region)] = true;
       if (!robot_.ended()) ++r_.segments;

@@ -35,16 +35,11 @@ RegionTransit::RegionTransit(const RectDecomposition& d) : d_(d), portals_of_(d.
     }
 }
 
-std::vector<int> RegionTransit::regions_at(Point q) const {
-  std::vector<int> out;
-  for (std::size_t r = 0; r < d_.regions.size(); ++r)
-    if (holds(d_.regions[r].box, q)) out.push_back(int(r));
-  return out;
-}
-
 void RegionTransit::search_from(Point p) {
   from_ = p;
-  from_regions_ = regions_at(p);
+  from_regions_.clear();
+  for (std::size_t r = 0; r < d_.regions.size(); ++r)
+    if (holds(d_.regions[r].box, p)) from_regions_.push_back(int(r));
   dist_.assign(portals_.size(), inf);
   prev_.assign(portals_.size(), -1);
   using Item = std::pair<double, int>;  // ties pop the lower portal first: deterministic
@@ -67,25 +62,21 @@ void RegionTransit::search_from(Point p) {
   }
 }
 
-std::pair<int, double> RegionTransit::last_portal(Point q) const {
-  const std::vector<int> at_q = regions_at(q);
-  for (int r : at_q)
-    if (std::find(from_regions_.begin(), from_regions_.end(), r) != from_regions_.end()) return {-1, dist(from_, q)};
+std::pair<int, double> RegionTransit::last_portal(Point q, int region) const {
+  if (std::find(from_regions_.begin(), from_regions_.end(), region) != from_regions_.end()) return {-1, dist(from_, q)};
   int best = -1;
   double length = inf;
-  for (int r : at_q) {
-    for (int k : portals_of_[std::size_t(r)]) {
-      const double l = dist_[std::size_t(k)] + dist(portals_[std::size_t(k)].at, q);
-      if (l < length) best = k, length = l;
-    }
+  for (int k : portals_of_[std::size_t(region)]) {
+    const double l = dist_[std::size_t(k)] + dist(portals_[std::size_t(k)].at, q);
+    if (l < length) best = k, length = l;
   }
   return {best, length};
 }
 
-double RegionTransit::distance_to(Point q) const { return last_portal(q).second; }
+double RegionTransit::distance_to(Point q, int region) const { return last_portal(q, region).second; }
 
-std::vector<Point> RegionTransit::path_to(Point q) const {
-  const auto [k, length] = last_portal(q);
+std::vector<Point> RegionTransit::path_to(Point q, int region) const {
+  const auto [k, length] = last_portal(q, region);
   if (length == inf) return {};
   std::vector<Point> path{q};
   for (int m = k; m >= 0; m = prev_[std::size_t(m)]) path.push_back(portals_[std::size_t(m)].at);

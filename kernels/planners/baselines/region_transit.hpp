@@ -16,22 +16,22 @@ class RegionTransit {
 
   // Shortest distances from p, a point of the free space, to every portal.
   void search_from(Point p);
-  // The length of the transit from the last search's p to q (a point of
-  // the free space), or infinity when no chain of rectangles links them.
-  double distance_to(Point q) const;
+  // The length of the transit from the last search's p to q, a point of
+  // rectangle `region`, entering it last (q may lie on other rectangles'
+  // edges too; going by the one given keeps this O(its portals)), or
+  // infinity when no chain of rectangles links them.
+  double distance_to(Point q, int region) const;
   // Its points after p, ending with q (empty when unreachable).
-  std::vector<Point> path_to(Point q) const;
+  std::vector<Point> path_to(Point q, int region) const;
 
  private:
   struct Portal {
     Point at;
     int a, b;  // the two rectangles it joins
   };
-  // The rectangles whose closed box holds q.
-  std::vector<int> regions_at(Point q) const;
-  // The portal that ends the shortest chain to q, with its length (-1: q
-  // shares a rectangle with p, or none reaches it).
-  std::pair<int, double> last_portal(Point q) const;
+  // The portal of `region` that ends the shortest chain to q, with its
+  // length (-1: p is in that rectangle too, or no chain reaches it).
+  std::pair<int, double> last_portal(Point q, int region) const;
 
   const RectDecomposition& d_;
   std::vector<Portal> portals_;
