@@ -17,9 +17,9 @@
 #include "analysis/tables.hpp"
 #include "analysis/text_table.hpp"
 #include "kernels/core/param_table.hpp"
+#include "kernels/core/rect_decomposition.hpp"
 #include "kernels/planners/arnold/zones.hpp"
 #include "kernels/planners/chebyshev/chebyshev_analysis.hpp"
-#include "kernels/planners/chebyshev/rect_decomposition.hpp"
 #include "kernels/systems/chebyshev_map.hpp"
 
 namespace chaosweep {

@@ -139,7 +139,7 @@ void add_run_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_flag("--json", *json, "print one JSON object with every input and output");
   cmd->add_option("--trace", *trace_path,
                   "write the trajectory as CSV (t, x, y, kind, ds_index; kind is start, arnold, "
-                  "transit or logistic)")
+                  "transit, logistic, chebyshev, subgoal or move)")
       ->type_name("FILE");
   auto* from_opt = cmd->add_option("--from", *from,
                                    "re-run row --run-id of this result file with its stored parameters (every "

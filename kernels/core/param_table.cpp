@@ -102,9 +102,11 @@ std::string_view coeff_help(int i) {
 std::vector<ParamInfo> make_table() {
   std::vector<ParamInfo> t = {
       CW_CHOICE(planner, Planner,
-                "planner: Arnold flow (with the switches below), Logistic map only, Chebyshev map (seed 001) "
-                "Arnold contraction (seed 003) or bouncing robot (seed 002)",
-                "arnold", "logistic", "chebyshev", "contraction", "bouncing"),
+                "planner: Arnold flow (with the switches below), Logistic map only, Chebyshev map (seed 001), "
+                "Arnold contraction (seed 003), bouncing robot (seed 002), or a baseline: random walk, random "
+                "bounce, boustrophedon lawnmower",
+                "arnold", "logistic", "chebyshev", "contraction", "bouncing", "random_walk", "random_bounce",
+                "lawnmower"),
       system_param(),
       added_later(CW_REAL(sys_a, -1e6, 1e6, true, coeff_help(0))),
       added_later(CW_REAL(sys_b, -1e6, 1e6, true, coeff_help(1))),
@@ -147,7 +149,9 @@ std::vector<ParamInfo> make_table() {
       CW_CHOICE(cheb_transform, ChebTransform, "transform of the Chebyshev orbit before mapping (Eqs. 4-5)", "none",
                 "arcsine", "arccosine"),
       CW_REAL(radius, 0, 1e3, false, "Chebyshev robot radius, m (edge expansion)"),
-      CW_REAL(step, 1e-4, 1e3, false, "robot step, m (Chebyshev: between interpolated points; bouncing: per move)"),
+      CW_REAL(step, 1e-4, 1e3, false,
+              "robot step, m (Chebyshev, lawnmower: between interpolated points; bouncing, random_bounce, "
+              "random_walk: per move)"),
       CW_INT(loop_subgoals, 1, 1e9, "Chebyshev sub-goals per large loop (split over the rectangles by area)"),
       CW_INT(max_subgoals, 0, 9.007199254740992e15, "end a Chebyshev run after this many sub-goals (0: no limit)"),
       CW_CHOICE(c3_mode, ContractionMode,
@@ -270,6 +274,9 @@ std::string variant_name(const RunParams& p) {
   if (p.planner == Planner::chebyshev) return "chebyshev";
   if (p.planner == Planner::contraction) return "contraction";
   if (p.planner == Planner::bouncing) return "bouncing";
+  if (p.planner == Planner::random_walk) return "random_walk";
+  if (p.planner == Planner::random_bounce) return "random_bounce";
+  if (p.planner == Planner::lawnmower) return "lawnmower";
   std::string s;
   auto add = [&](const char* part) {
     if (!s.empty()) s += '+';
@@ -296,6 +303,12 @@ const char* to_string(Planner v) {
       return "contraction";
     case Planner::bouncing:
       return "bouncing";
+    case Planner::random_walk:
+      return "random_walk";
+    case Planner::random_bounce:
+      return "random_bounce";
+    case Planner::lawnmower:
+      return "lawnmower";
   }
   return "?";
 }
@@ -338,6 +351,8 @@ const char* to_string(SegmentKind v) {
       return "chebyshev";
     case SegmentKind::subgoal:
       return "subgoal";
+    case SegmentKind::move:
+      return "move";
   }
   return "?";
 }

@@ -10,7 +10,8 @@
 
 namespace chaosweep {
 
-enum class Planner { arnold, logistic, chebyshev, contraction, bouncing };
+// The last three are the baselines (docs/spec.md §7).
+enum class Planner { arnold, logistic, chebyshev, contraction, bouncing, random_walk, random_bounce, lawnmower };
 enum class Boundary { mirror, fold };
 enum class Integrator { rk4, rk4_doubling };
 enum class Sampling { segments, points };
@@ -159,7 +160,7 @@ struct RunResult {
   std::int64_t visited_cells = 0;
   std::int64_t dt_halvings = 0;  // step-doubling halvings
   double final_x = unset, final_y = unset;
-  std::int64_t segments = 0;  // Arnold / Logistic segments run; Chebyshev large loops
+  std::int64_t segments = 0;  // Arnold / Logistic segments run; Chebyshev large loops; lawnmower rectangles
   std::int64_t index_switches = 0;
   std::int64_t zonings = 0;           // MapZoning calls
   std::int64_t transits = 0;          // transits that reached their zone midpoint
@@ -168,7 +169,7 @@ struct RunResult {
   std::int64_t transit_attempts = 0;  // transit points pushed out of an obstacle (Eq. 8)
   int final_ds_index = 0;
   std::int64_t subgoals = 0;     // Chebyshev sub-goals reached
-  std::int64_t reflections = 0;  // seed 003 mirror mapping; seed 002 bumps
+  std::int64_t reflections = 0;  // seed 003 mirror mapping; seed 002 and random_bounce bumps; random_walk redraws
   double visit_evenness = 0.0;   // Pielou evenness of cell entries over free cells (visit_evenness)
   double turn_entropy = 0.0;     // bits per turn between cell entries (turn_entropy)
   double coverage_area = unset;  // mean first-visit time of the cells dc needs, over T_opt (coverage_area)

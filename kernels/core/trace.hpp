@@ -4,8 +4,10 @@
 namespace chaosweep {
 
 // chebyshev: a point on the way to a sub-goal inside a coverage rectangle;
-// subgoal: the sub-goal itself; transit: a point in a transition rectangle.
-enum class SegmentKind { start, arnold, transit, logistic, chebyshev, subgoal };
+// subgoal: the sub-goal itself; transit: a point in a transition rectangle
+// (lawnmower: on the way between rectangles); move: a baseline's move (a
+// random-walk step, a point of a lawnmower's lanes).
+enum class SegmentKind { start, arnold, transit, logistic, chebyshev, subgoal, move };
 const char* to_string(SegmentKind);
 
 struct TracePoint {

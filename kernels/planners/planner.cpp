@@ -7,6 +7,9 @@
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
 #include "kernels/planners/arnold/planner_run.hpp"
+#include "kernels/planners/baselines/lawnmower.hpp"
+#include "kernels/planners/baselines/random_bounce.hpp"
+#include "kernels/planners/baselines/random_walk.hpp"
 #include "kernels/planners/bouncing/bouncing_run.hpp"
 #include "kernels/planners/chebyshev/chebyshev_run.hpp"
 #include "kernels/planners/contraction/contraction_run.hpp"
@@ -67,6 +70,8 @@ std::string validate_run(const RunParams& p, const Environment& env) {
   if (p.planner == Planner::chebyshev) return validate_chebyshev(p, env);
   if (p.planner == Planner::contraction) return validate_contraction(p, env);
   if (p.planner == Planner::bouncing) return validate_bouncing(p);
+  if (p.planner == Planner::random_walk) return validate_random_walk(p, env);
+  if (p.planner == Planner::lawnmower) return validate_lawnmower(p, env);
   return {};
 }
 
@@ -108,6 +113,9 @@ RunResult run_planner(const RunParams& p, const Environment& env, TraceSink* tra
   if (p.planner == Planner::chebyshev) run_chebyshev(p, env, *grid, r, trace);
   else if (p.planner == Planner::contraction) run_contraction(p, env, *grid, r, trace);
   else if (p.planner == Planner::bouncing) run_bouncing(p, env, *grid, r, trace);
+  else if (p.planner == Planner::random_walk) run_random_walk(p, env, *grid, r, trace);
+  else if (p.planner == Planner::random_bounce) run_bouncing(random_bounce_as_bouncing(p), env, *grid, r, trace);
+  else if (p.planner == Planner::lawnmower) run_lawnmower(p, env, *grid, r, trace);
   else PlannerRun(p, env, *grid, r, trace).run();
   conclude_run(p, *grid, r);
   return r;

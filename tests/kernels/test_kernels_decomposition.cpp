@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "kernels/core/clutter.hpp"
+#include "kernels/core/rect_decomposition.hpp"
 #include "kernels/planners/chebyshev/chebyshev_run.hpp"
-#include "kernels/planners/chebyshev/rect_decomposition.hpp"
 #include "kernels/planners/planner.hpp"
 #include "tests/support/kernel_test_util.hpp"
 

@@ -79,8 +79,8 @@ TEST(PathMetrics, BlockedCellsAreNotInTheEvennessAndAJumpTakesItsLongerAxis) {
 }
 
 TEST(PathMetrics, EveryPlannerReportsThemInItsResult) {
-  for (Planner planner :
-       {Planner::arnold, Planner::logistic, Planner::chebyshev, Planner::bouncing, Planner::contraction}) {
+  for (Planner planner : {Planner::arnold, Planner::logistic, Planner::chebyshev, Planner::bouncing,
+                          Planner::contraction, Planner::random_walk, Planner::random_bounce, Planner::lawnmower}) {
     RunParams p = small_run();
     p.planner = planner;
     const RunResult r = run_planner(p, square_map(p.size_x));
@@ -133,4 +133,16 @@ TEST(PathMetrics, CoverageAreaIsTheMeanFirstVisitTimeOfTheCellsTheTargetNeeds) {
     m.note_time(double(k));
   }
   EXPECT_DOUBLE_EQ(coverage_area(m, 15.0, 320.0, 16.0), 7.5 / 16.0);
+}
+
+TEST(PathMetrics, TheLawnmowerBaselineCoversAtASteadyPaceSoItsCoverageAreaIsAboutOneHalf) {
+  RunParams p = small_run(10.0);
+  p.planner = Planner::lawnmower;
+  p.start_x = p.start_y = 0.5;
+  const RunResult r = run_planner(p, square_map(10.0));
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_NEAR(r.pr, 1.0, 0.02);
+  // One new cell per metre from the start's centre: the i-th at about
+  // i - 0.5 s, a mean of about (n - 1) / 2 s over n = 90 cells, T_opt = 90 s.
+  EXPECT_NEAR(r.coverage_area, 0.49, 0.01);
 }

@@ -5,8 +5,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "kernels/core/cell_tracker.hpp"
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
+#include "kernels/core/run_end.hpp"
 #include "kernels/systems/chebyshev_map.hpp"
 
 namespace chaosweep {
@@ -79,11 +81,7 @@ class ChebyshevRun {
   void end(Status s, const char* why = nullptr) {
     if (ended_) return;
     ended_ = true;
-    r_.status = s;
-    if (why) r_.message = why;
-    if (s == Status::ok) r_.coverage_time = t_;
-    r_.t_end = t_;
-    r_.final_x = px_, r_.final_y = py_;
+    record_end(r_, s, why, t_, px_, py_);
   }
 
   // Iterates the maps once and returns the sub-goal in `box` (Eq. 11).
@@ -137,22 +135,12 @@ class ChebyshevRun {
       px_ = x, py_ = y, t_ = t;
       r_.steps += m;
     };
-    int ci = grid_.cell_x(x), cj = grid_.cell_y(y);
+    CellTracker cell(grid_, x, y);
     for (;; ++m) {
       const bool last = m == moves;
       const double f = double(m) / double(moves);
       const double nx = last ? gx : sx + f * (gx - sx), ny = last ? gy : sy + f * (gy - sy);
-      // A move that stays in the robot's cell marks nothing new: that cell
-      // was marked when the robot entered it (a move is shorter than a cell,
-      // so most moves are such), and coverage, checked after every mark,
-      // cannot have reached dc without one.
-      const int ni = grid_.cell_x(nx), nj = grid_.cell_y(ny);
-      const bool entered = ni != ci || nj != cj;
-      if (entered) {
-        if (points) grid_.mark_cell(ni, nj);
-        else grid_.mark_segment(x, y, nx, ny);
-        ci = ni, cj = nj;
-      }
+      const bool entered = cell.mark_move(grid_, points, x, y, nx, ny);
       x = nx, y = ny;
       t += move_time;
       if (entered) grid_.note_time(t);

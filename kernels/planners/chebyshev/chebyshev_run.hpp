@@ -3,14 +3,14 @@
 // Chebyshev maps give sub-goals, mapped affinely (Eqs. 10-11) into the
 // rectangle the robot is working in; the robot walks straight to each
 // sub-goal in steps of p.step. With obstacles, the free space is decomposed
-// (rect_decomposition.hpp) and covered in large loops (Section 5.2): each
+// (core/rect_decomposition.hpp) and covered in large loops (Section 5.2): each
 // coverage rectangle gets its share of p.loop_subgoals by area, then the
 // robot leaves through a transition rectangle to the next one.
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
+#include "kernels/core/rect_decomposition.hpp"
 #include "kernels/core/run_params.hpp"
 #include "kernels/core/trace.hpp"
-#include "kernels/planners/chebyshev/rect_decomposition.hpp"
 
 namespace chaosweep {
 

@@ -1,4 +1,4 @@
-#include "kernels/planners/chebyshev/rect_decomposition.hpp"
+#include "kernels/core/rect_decomposition.hpp"
 
 #include <algorithm>
 #include <cmath>

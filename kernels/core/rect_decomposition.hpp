@@ -5,7 +5,8 @@
 // transition rectangles (ST_y). Everything is computed on the geometry after
 // edge expansion: the workplace shrunk and the obstacles grown by the robot
 // radius, so a robot centre inside any of these rectangles keeps its body
-// clear of walls and obstacles.
+// clear of walls and obstacles. In core/ because the lawnmower baseline
+// (planners/baselines/) covers the same rectangles with radius 0.
 #include <string>
 #include <vector>
 
