@@ -35,7 +35,7 @@ const std::map<std::string, std::string>& measured() {
       {"reflections", "reflections (count)"},
       {"visit_evenness", "evenness of cell visits (Pielou, 0-1)"},
       {"turn_entropy", "turn entropy between cell entries (bits)"},
-      {"coverage_area", "coverage-time area (mean first-visit time / T_opt)"},
+      {"coverage_area", "coverage area (mean first-visit time / T_opt)"},
       {"race_round", "race round"},
       {"config_id", "configuration"},
       {"wall_time", "wall time (s)"},

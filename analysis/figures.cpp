@@ -11,6 +11,7 @@
 #include "analysis/column_labels.hpp"
 #include "analysis/ct_distribution.hpp"
 #include "analysis/grouping.hpp"
+#include "analysis/leaderboard_figure.hpp"
 #include "analysis/named_list.hpp"
 #include "analysis/papers/bouncing_paper.hpp"
 #include "analysis/replay.hpp"
@@ -483,6 +484,7 @@ const std::vector<FigureKind>& figure_kinds() {
          return ct_distribution({LabelledResults{"results", rs}}, o, p);
        },
        true},
+      {"leaderboard", true, leaderboard_figure},
       {"cheb_histogram", false,
        [](const ResultSet&, const FigureOptions& o, const std::string& p) { return cheb_histogram(o, p); }},
       {"cheb_lyapunov", false,

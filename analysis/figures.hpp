@@ -39,6 +39,8 @@ struct FigureOutput {
 // trajectory: one run's path over its map, from a replay of its parameters.
 // coverage: coverage vs time for several runs.
 // ct_distribution: per file and group of --by, the ECDF of coverage time (ct_distribution.hpp).
+// leaderboard: per planner (--by, as `table leaderboard`), the share of its runs within each PR
+//        over every map, in the leaderboard's order (leaderboard_figure.hpp).
 // cheb_histogram: the Chebyshev orbit's histogram, raw and arcsine-transformed.
 // cheb_lyapunov: the Chebyshev map's Lyapunov exponent over k, raw and transformed.
 FigureOutput make_figure(const std::string& name, const ResultSet& rs, const FigureOptions& opt,

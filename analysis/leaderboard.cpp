@@ -60,25 +60,14 @@ std::vector<std::string> leaderboard_columns(const std::vector<std::string>& pla
   return c;
 }
 
-TextTable leaderboard_table(const ResultSet& rs, std::vector<std::string> planner) {
+Leaderboard rank_planners(const ResultSet& rs, std::vector<std::string> planner) {
   if (planner.empty()) planner = {every_run_labelled(rs) ? "label" : "variant"};
   for (const std::string& k : map_keys()) (void)rs.cell(k, 0);  // names a missing map column
-  TextTable t;
-  t.title = "Leaderboard: planners ranked on each map by median coverage time";
-  t.header = {"map", "rank"};
-  t.header.insert(t.header.end(), planner.begin(), planner.end());
-  for (const char* h : {"runs", "ok rate", "median CT", "median PR", "median coverage", "visit evenness",
-                        "turn entropy", "coverage area"})
-    t.header.emplace_back(h);
-  struct Standing {
-    double rank_sum = 0;
-    int maps = 0, wins = 0;
-  };
-  std::map<std::string, Standing> standing;
-  std::vector<std::string> order;  // planners as first met, for the overall list's ties
-  int maps = 0;
+  Leaderboard lb;
+  lb.planner = planner;
+  std::map<std::string, std::size_t> overall;  // planner name -> index in lb.overall, as first met
   for (const Group& m : group_rows(rs, map_keys(), all_rows(rs))) {
-    ++maps;
+    lb.maps.push_back(map_name(rs, m.rows[0]));
     const std::vector<Group> planners = group_rows(rs, planner, m.rows);
     std::vector<double> score;
     for (const Group& p : planners) score.push_back(tuple_score(rs, p.rows));
@@ -90,36 +79,54 @@ TextTable leaderboard_table(const ResultSet& rs, std::vector<std::string> planne
       const Group& p = planners[i];
       std::string name;
       for (const std::string& k : p.key) name += (name.empty() ? "" : " ") + k;
-      if (!standing.count(name)) order.push_back(name);
-      Standing& s = standing[name];
-      s.rank_sum += rank[i];
-      s.maps += 1;
-      s.wins += rank[i] == 1.0;
-      std::vector<Cell> row{map_name(rs, m.rows[0]), sig_cell(rank[i], 3)};
-      row.insert(row.end(), p.key.begin(), p.key.end());
-      row.push_back(std::to_string(p.rows.size()));
-      row.push_back(fixed_cell(group_statistic(rs, p.rows, "ok_rate"), 3));
-      row.push_back(std::isinf(score[i]) ? "-" : sig_cell(score[i], 5));
-      row.push_back(sig_cell(group_statistic(rs, p.rows, "median", "pr"), 3));
-      for (const char* c : {"final_coverage", "visit_evenness", "turn_entropy", "coverage_area"}) {
-        const double v = column_median(rs, c, p.rows);
-        row.push_back(std::isnan(v) ? Cell("-") : fixed_cell(v, 3));
+      if (!overall.count(name)) {
+        overall[name] = lb.overall.size();
+        lb.overall.push_back({name, 0.0, 0, 0, {}});
       }
-      t.add_row(std::move(row));
+      Leaderboard::Standing& st = lb.overall[overall[name]];
+      st.mean_rank += rank[i];
+      st.maps += 1;
+      st.wins += rank[i] == 1.0;
+      st.rows.insert(st.rows.end(), p.rows.begin(), p.rows.end());
+      lb.entries.push_back({lb.maps.size() - 1, p.key, p.rows, score[i], rank[i]});
     }
   }
-  // Overall: mean rank over the maps each planner ran on, then wins.
-  std::stable_sort(order.begin(), order.end(), [&](const std::string& a, const std::string& b) {
-    const Standing &x = standing[a], &y = standing[b];
-    const double mx = x.rank_sum / x.maps, my = y.rank_sum / y.maps;
-    return mx != my ? mx < my : x.wins > y.wins;
+  // Overall: mean rank over the maps each planner ran on, then wins; ties
+  // keep the order planners were first met in.
+  for (Leaderboard::Standing& st : lb.overall) st.mean_rank /= st.maps;
+  std::stable_sort(lb.overall.begin(), lb.overall.end(), [](const auto& x, const auto& y) {
+    return x.mean_rank != y.mean_rank ? x.mean_rank < y.mean_rank : x.wins > y.wins;
   });
-  std::string overall = "Overall, mean rank over the " + std::to_string(maps) + " map(s) (wins):";
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const Standing& s = standing[order[i]];
-    overall += (i ? "; " : " ") + order[i] + " " + sig_cell(s.rank_sum / s.maps, 3).shown + " (" +
-               std::to_string(s.wins) + ")";
-    if (s.maps < maps) overall += " on " + std::to_string(s.maps) + " map(s)";
+  return lb;
+}
+
+TextTable leaderboard_table(const ResultSet& rs, std::vector<std::string> planner) {
+  const Leaderboard lb = rank_planners(rs, std::move(planner));
+  TextTable t;
+  t.title = "Leaderboard: planners ranked on each map by median coverage time";
+  t.header = {"map", "rank"};
+  t.header.insert(t.header.end(), lb.planner.begin(), lb.planner.end());
+  for (const char* h : {"runs", "ok rate", "median CT", "median PR", "median coverage", "visit evenness",
+                        "turn entropy", "coverage area"})
+    t.header.emplace_back(h);
+  for (const Leaderboard::Entry& e : lb.entries) {
+    std::vector<Cell> row{lb.maps[e.map], sig_cell(e.rank, 3)};
+    row.insert(row.end(), e.key.begin(), e.key.end());
+    row.push_back(std::to_string(e.rows.size()));
+    row.push_back(fixed_cell(group_statistic(rs, e.rows, "ok_rate"), 3));
+    row.push_back(std::isinf(e.score) ? "-" : sig_cell(e.score, 5));
+    row.push_back(sig_cell(group_statistic(rs, e.rows, "median", "pr"), 3));
+    for (const char* c : {"final_coverage", "visit_evenness", "turn_entropy", "coverage_area"}) {
+      const double v = column_median(rs, c, e.rows);
+      row.push_back(std::isnan(v) ? Cell("-") : fixed_cell(v, 3));
+    }
+    t.add_row(std::move(row));
+  }
+  std::string overall = "Overall, mean rank over the " + std::to_string(lb.maps.size()) + " map(s) (wins):";
+  for (std::size_t i = 0; i < lb.overall.size(); ++i) {
+    const Leaderboard::Standing& s = lb.overall[i];
+    overall += (i ? "; " : " ") + s.name + " " + sig_cell(s.mean_rank, 3).shown + " (" + std::to_string(s.wins) + ")";
+    if (std::size_t(s.maps) < lb.maps.size()) overall += " on " + std::to_string(s.maps) + " map(s)";
   }
   t.notes.push_back(overall + ".");
   t.notes.push_back(

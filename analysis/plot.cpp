@@ -210,6 +210,8 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
       ylo = std::min(ylo, s.y[i]), yhi = std::max(yhi, s.y[i]);
     }
   if (!(xhi >= xlo)) throw AnalysisError("line plot: no data to draw");
+  if (p.x_log && !(xlo > 0)) throw AnalysisError("line plot: a log x axis needs every x > 0");
+  if (p.x_log && p.mark) throw AnalysisError("line plot: a mark on a log x axis is not drawn");
   if (p.y_range) ylo = p.y_range->first, yhi = p.y_range->second;
   RenderReport rep;
   std::size_t named = 0, longest = 0;
@@ -217,7 +219,11 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
     if (!s.name.empty()) ++named, longest = std::max(longest, s.name.size());
   rep.legend_outside = named > 1;
   mglGraph gr(0, size.width, size.height);
-  const auto [x0, x1] = padded(xlo, xhi);
+  // A log axis: padded by a factor, and the frame (for label placement) in
+  // log10 units, as drawn.
+  const auto to_frame = [&](double x) { return p.x_log ? std::log10(x) : x; };
+  auto [x0, x1] = p.x_log ? padded(std::log10(xlo), std::log10(xhi)) : padded(xlo, xhi);
+  if (p.x_log && xhi > xlo) x0 -= 0.02 * (x1 - x0), x1 += 0.02 * (x1 - x0);
   const auto [y0, y1] = padded(ylo, yhi);
   const LegendLayout lay = legend_layout(named, longest);
   double scale = 1.0;  // the font relative to the plot: larger in a narrower plot
@@ -225,7 +231,12 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
     title_and_cell(gr, p.title, lay.plot_width);
     scale = plot_font_scale(lay.plot_width);
   }
-  gr.SetRanges(x0, x1, y0, y1);
+  if (p.x_log) {
+    gr.SetRanges(std::pow(10.0, x0), std::pow(10.0, x1), y0, y1);
+    gr.SetFunc("lg(x)", "");
+  } else {
+    gr.SetRanges(x0, x1, y0, y1);
+  }
   frame(gr, rep.legend_outside ? "" : p.title, p.xlabel, p.ylabel);
   gr.Grid("xy", "h");
   const Frame f{x0, x1, y0, y1};
@@ -238,7 +249,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
     lines.emplace_back();
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       x.a[i] = s.x[i], y.a[i] = s.y[i];
-      lines.back().emplace_back(f.fx(s.x[i]), f.fy(s.y[i]));
+      lines.back().emplace_back(f.fx(to_frame(s.x[i])), f.fy(s.y[i]));
     }
     const std::string pen =
         s.colour >= 0 ? line_pen(std::size_t(s.colour), std::size_t(std::max(0, s.dash))) : series_pen(k);
@@ -249,10 +260,16 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
   if (p.mark) {
     LabelSide side = p.mark->side;
     if (side == LabelSide::automatic)
-      side = choose_label_side(f.fx(p.mark->x), f.fy(p.mark->y), p.mark->label.size(), scale, lines);
+      side = choose_label_side(f.fx(to_frame(p.mark->x)), f.fy(p.mark->y), p.mark->label.size(), scale, lines);
     put_mark(gr, *p.mark, side, f, scale, false, rep);
   }
-  if (rep.legend_outside) outside_legend(gr, f, legend, lay, 0);
+  if (rep.legend_outside) {
+    if (p.x_log) {  // the legend is placed in frame units: the linear axis of the log values
+      gr.SetFunc("", "");
+      gr.SetRanges(x0, x1, y0, y1);
+    }
+    outside_legend(gr, f, legend, lay, 0);
+  }
   save(gr, path);
   return rep;
 }

@@ -40,6 +40,7 @@ struct LinePlot {
   std::vector<LineSeries> series;
   std::optional<PlotMark> mark;
   std::optional<std::pair<double, double>> y_range;
+  bool x_log = false;  // a log10 x axis (every x > 0; no mark)
 };
 
 struct Box2 {

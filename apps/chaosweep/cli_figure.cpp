@@ -27,6 +27,8 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
       "  ct_distribution  per file (A.h5 B.h5 ...) and group of --by COL1,COL2: the coverage-time\n"
       "              distribution (ECDF), each curve topping out at its share of ok runs; at most 12\n"
       "              curves\n"
+      "  leaderboard the leaderboard's planners (--by, as `table leaderboard`) in its order: the share\n"
+      "              of each one's runs over every map within a PR (log axis)\n"
       "  cheb_histogram, cheb_lyapunov  seed 001's Chebyshev map: orbit histogram raw and\n"
       "              transformed; Lyapunov exponent over k (computed, no result file)\n"
       "  seed002_limit  seed 002: the best bouncing-policy mixture's limiting distribution\n"
@@ -56,7 +58,7 @@ void add_figure_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--run", o->fig.runs, "trajectory/coverage: run_id (repeatable)");
   cmd->add_option("--by", o->fig.by,
                   "coverage: one run per value of this column; line: one line per value; ct_distribution: a curve "
-                  "per file and value of these columns (comma-separated)");
+                  "per file and value of these columns (comma-separated); leaderboard: the planner columns");
   cmd->add_option("--where", o->where, "keep rows with COLUMN=VALUE (repeatable; all must hold)");
   cmd->add_option("--bins", o->fig.bins, "seed002_limit: orientation bins")->check(CLI::Range(4, 3600));
   cmd->add_option("--policy", o->fig.policy, "seed002_limit: 0 the best mixture (default), i the i-th policy alone");

@@ -876,15 +876,18 @@ TEST(Tables, LeaderboardRanksPlannersPerMapWithSharedTiesAndAMeanRank) {
   const ResultSet without = ResultSet::from_columns(num, {{"label", label}, {"status", status}, {"env", env}});
   num["visit_evenness"] = {0.8, 0.9, 0.5, 0.7, 0.6, 0.9, 0.9, 0.95, 0.97};
   num["turn_entropy"] = {1.5, 1.6, 1.0, 1.2, 1.1, 1.7, 1.7, 1.8, 1.9};
+  num["coverage_area"] = {0.4, 0.6, 9.0, 11.0, n, 1.0, 2.0, 0.75, 1.25};  // NaN: an invalid run's
   const ResultSet rs = ResultSet::from_columns(num, {{"label", label}, {"status", status}, {"env", env}});
   const std::string md = table_text("leaderboard", rs, TableOptions{}, TableFormat::md);
-  EXPECT_NE(md.find("| A 50 m, SR 1 | 1 | p1 | 2 | 1.000 | 100 | 1 | 0.900 | 0.850 | 1.550 |"), std::string::npos)
+  EXPECT_NE(md.find("| A 50 m, SR 1 | 1 | p1 | 2 | 1.000 | 100 | 1 | 0.900 | 0.850 | 1.550 | 0.500 |"),
+            std::string::npos)
       << md;
   EXPECT_NE(md.find("| A 50 m, SR 1 | 2.5 | p2 | 2 | 0.000 | - | - | 0.600 | 0.600 | 1.100 |"), std::string::npos)
       << md;
-  EXPECT_NE(md.find("| A 50 m, SR 1 | 2.5 | p3 | 1 | 0.000 | - | - | 0.400 | 0.600 | 1.100 |"), std::string::npos)
+  EXPECT_NE(md.find("| A 50 m, SR 1 | 2.5 | p3 | 1 | 0.000 | - | - | 0.400 | 0.600 | 1.100 | - |"), std::string::npos)
       << md;
-  EXPECT_NE(md.find("| B 50 m, SR 1 | 1 | p2 | 2 | 1.000 | 230 | 2.3 | 0.900 | 0.960 | 1.850 |"), std::string::npos)
+  EXPECT_NE(md.find("| B 50 m, SR 1 | 1 | p2 | 2 | 1.000 | 230 | 2.3 | 0.900 | 0.960 | 1.850 | 1.000 |"),
+            std::string::npos)
       << md;
   EXPECT_NE(md.find("| B 50 m, SR 1 | 2 | p1 | 2 | 1.000 | 400 | 4 |"), std::string::npos) << md;
   // p1: (1 + 2) / 2 = 1.5, one win; p2: (2.5 + 1) / 2 = 1.75, one win; p3: 2.5 on one map.
@@ -892,7 +895,7 @@ TEST(Tables, LeaderboardRanksPlannersPerMapWithSharedTiesAndAMeanRank) {
             std::string::npos)
       << md;
   const std::string old = table_text("leaderboard", without, TableOptions{}, TableFormat::csv);
-  EXPECT_NE(old.find("\"A 50 m, SR 1\",1,p1,2,1,100,1,0.9,-,-\n"), std::string::npos) << old;
+  EXPECT_NE(old.find("\"A 50 m, SR 1\",1,p1,2,1,100,1,0.9,-,-,-\n"), std::string::npos) << old;
   // --by names the planner columns; a map column the files lack is named.
   TableOptions by_env;
   by_env.by = {"env"};

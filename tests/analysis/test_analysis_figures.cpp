@@ -6,8 +6,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <set>
+#include <sstream>
 
 #include "analysis/column_labels.hpp"
 #include "analysis/ct_distribution.hpp"
@@ -286,6 +288,64 @@ TEST_F(TwoResultSets, CommandLineDrawsCtDistributionOfSeveralFiles) {
   r = test::run_chaosweep("figure ct_distribution " + files()[0] + " --by colour -o " + dir_.file("bad.png"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no column 'colour'"), std::string::npos) << r.err;
+}
+
+// figure leaderboard: per planner, in the leaderboard's overall order, the
+// share of its runs over every map within each PR; its CSV holds one row per
+// ok run, a planner with none one row with PR "-".
+TEST(Figures, LeaderboardDrawsEachPlannersShareOfRunsWithinAPrInRankOrder) {
+  TempDir dir;
+  const std::vector<std::string> label{"slow", "slow", "fast", "fast", "never", "slow", "fast", "never"};
+  const std::vector<std::string> status{"ok", "ok", "ok", "ok", "timeout", "ok", "ok", "timeout"};
+  const std::vector<std::string> env{"A", "A", "A", "A", "A", "B", "B", "B"};
+  const double n = std::numeric_limits<double>::quiet_NaN();
+  const ResultSet rs = ResultSet::from_columns({{"coverage_time", {400, 600, 100, 300, n, 900, 200, n}},
+                                                {"pr", {4, 6, 1, 3, n, 9, 2, n}},
+                                                {"size_x", std::vector<double>(8, 50)},
+                                                {"size_y", std::vector<double>(8, 50)},
+                                                {"sr", std::vector<double>(8, 1)}},
+                                               {{"label", label}, {"status", status}, {"env", env}});
+  FigureOptions opt;
+  const FigureOutput out = make_figure("leaderboard", rs, opt, dir.file("lb.png"));
+  ASSERT_EQ(out.lines.size(), 3u);
+  EXPECT_EQ(out.lines[0], "fast: mean rank 1 over 2 map(s), 100.0% of 3 runs reached the target, median PR of those 2");
+  EXPECT_EQ(out.lines[1], "slow: mean rank 2 over 2 map(s), 100.0% of 3 runs reached the target, median PR of those 6");
+  EXPECT_EQ(out.lines[2], "never: mean rank 3 over 2 map(s), 0.0% of 2 runs reached the target");
+  EXPECT_TRUE(std::filesystem::file_size(dir.file("lb.png")) > 0);
+  std::ifstream csv(dir.file("lb.csv"));
+  std::stringstream text;
+  text << csv.rdbuf();
+  EXPECT_EQ(text.str(),
+            "planner,mean_rank,runs,ok,pr,cumulative_share\n"
+            "fast,1,3,3,1,0.3333333333333333\n"
+            "fast,1,3,3,2,0.6666666666666666\n"
+            "fast,1,3,3,3,1\n"
+            "slow,2,3,3,4,0.3333333333333333\n"
+            "slow,2,3,3,6,0.6666666666666666\n"
+            "slow,2,3,3,9,1\n"
+            "never,3,2,0,-,0\n");
+  // No run reached the target: nothing to draw, said so.
+  const ResultSet none = rs.where({"label=never"});
+  try {
+    make_figure("leaderboard", none, opt, dir.file("none.png"));
+    FAIL() << "no ok run drawn";
+  } catch (const AnalysisError& e) {
+    EXPECT_NE(std::string(e.what()).find("no run reached the target"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PlotStyle, ALogXAxisNeedsPositiveValuesAndTakesNoMark) {
+  TempDir dir;
+  LinePlot p;
+  p.x_log = true;
+  p.series.push_back({"a", {1, 10, 100}, {0, 50, 100}});
+  p.series.push_back({"b", {2, 20, 200}, {0, 50, 100}});
+  EXPECT_TRUE(render(p, dir.file("log.png"), {320, 240}).legend_outside);
+  p.series[0].x[0] = 0;
+  EXPECT_THROW(render(p, dir.file("zero.png"), {320, 240}), AnalysisError);
+  p.series[0].x[0] = 1;
+  p.mark = PlotMark{10, 50, "m"};
+  EXPECT_THROW(render(p, dir.file("mark.png"), {320, 240}), AnalysisError);
 }
 
 }  // namespace
