@@ -6,7 +6,7 @@
 #include "kernels/core/param_table.hpp"
 #include "kernels/core/rect_decomposition.hpp"
 #include "kernels/planners/baselines/baseline_robot.hpp"
-#include "kernels/planners/baselines/lanes.hpp"
+#include "kernels/planners/baselines/lawnmower_lanes.hpp"
 #include "kernels/planners/baselines/region_transit.hpp"
 
 namespace chaosweep {

@@ -1,4 +1,4 @@
-#include "kernels/planners/baselines/lanes.hpp"
+#include "kernels/planners/baselines/lawnmower_lanes.hpp"
 
 #include <algorithm>
 
