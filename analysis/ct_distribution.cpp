@@ -45,6 +45,18 @@ struct Curve {
 
 }  // namespace
 
+LineSeries ecdf_steps(const std::vector<double>& sorted, std::size_t runs, double x0, double x_end) {
+  LineSeries s;
+  s.x = {x0};
+  s.y = {0.0};
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    s.x.push_back(sorted[i]), s.y.push_back(s.y.back());
+    s.x.push_back(sorted[i]), s.y.push_back(100.0 * double(i + 1) / double(runs));
+  }
+  s.x.push_back(x_end), s.y.push_back(s.y.back());
+  return s;
+}
+
 FigureOutput ct_distribution(const std::vector<LabelledResults>& sets, const FigureOptions& opt,
                              const std::string& path) {
   if (sets.empty()) throw AnalysisError("ct_distribution: give one or more result files (.h5)");
@@ -121,20 +133,12 @@ FigureOutput ct_distribution(const std::vector<LabelledResults>& sets, const Fig
         r.push_back(std::move(v));
       csv.add_row(std::move(r));
     };
-    LineSeries s;
+    LineSeries s = ecdf_steps(c.ct, c.runs, 0.0, tmax);
     s.name = c.name + " (" + std::to_string(c.ct.size()) + "/" + std::to_string(c.runs) + " ok)";
     if (colour_by_group)  // a colour per group, a dash per file: A and B of a group side by side
       s.colour = int(c.group % line_colour_count), s.dash = int(c.file + sets.size() * (c.group / line_colour_count));
-    s.x = {0.0};
-    s.y = {0.0};
     if (c.ct.empty()) row("-", 0.0);
-    for (std::size_t i = 0; i < c.ct.size(); ++i) {  // a step up at each ok run's CT
-      const double share = double(i + 1) / n;
-      row(format_number(c.ct[i]), share);
-      s.x.push_back(c.ct[i]), s.y.push_back(s.y.back());
-      s.x.push_back(c.ct[i]), s.y.push_back(100.0 * share);
-    }
-    s.x.push_back(tmax), s.y.push_back(s.y.back());  // flat to the end: the rest never arrive
+    for (std::size_t i = 0; i < c.ct.size(); ++i) row(format_number(c.ct[i]), double(i + 1) / n);
     std::string line = s.name + ": " + fmt_fixed(100.0 * ok / n, 1) + "% reached the target";
     if (!c.ct.empty()) line += ", median CT " + fmt_sig(quantile(c.ct, 0.5), 6) + " s";
     out.lines.push_back(std::move(line));

@@ -21,6 +21,11 @@ struct LabelledResults {
 // parent folder and stem, or else the whole path.
 std::vector<std::string> file_labels(const std::vector<std::string>& paths);
 
+// An ECDF as a line: from (x0, 0) a step up of 100 / runs % at each of the
+// sorted values (the runs that reached the target), then flat to x_end (the
+// rest never arrive). Shared by ct_distribution and figure leaderboard.
+LineSeries ecdf_steps(const std::vector<double>& sorted, std::size_t runs, double x0, double x_end);
+
 // At most this many curves (files x groups of --by) in one figure.
 constexpr std::size_t ct_distribution_max_curves = 12;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/ct_distribution.hpp"
 #include "analysis/grouping.hpp"
 #include "analysis/leaderboard.hpp"
 #include "analysis/plot.hpp"
@@ -38,20 +39,13 @@ FigureOutput leaderboard_figure(const ResultSet& rs, const FigureOptions& opt, c
     const Leaderboard::Standing& s = lb.overall[k];
     const std::vector<double>& v = prs[k];
     const double n = double(s.rows.size());
-    LineSeries line;
-    line.name = s.name + " (mean rank " + fmt_sig(s.mean_rank, 3) + ")";
-    line.x = {lo};
-    line.y = {0.0};
     const std::string rank = fmt_sig(s.mean_rank, 3);
+    LineSeries line = ecdf_steps(v, s.rows.size(), lo, hi);
+    line.name = s.name + " (mean rank " + rank + ")";
     if (v.empty()) csv.add_row({s.name, rank, std::to_string(s.rows.size()), "0", "-", "0"});
-    for (std::size_t i = 0; i < v.size(); ++i) {  // a step up at each ok run's PR
-      const double share = double(i + 1) / n;
+    for (std::size_t i = 0; i < v.size(); ++i)
       csv.add_row({s.name, rank, std::to_string(s.rows.size()), std::to_string(v.size()), format_number(v[i]),
-                   sig_cell(share, 6)});
-      line.x.push_back(v[i]), line.y.push_back(line.y.back());
-      line.x.push_back(v[i]), line.y.push_back(100.0 * share);
-    }
-    line.x.push_back(hi), line.y.push_back(line.y.back());  // flat to the end: the rest never arrive
+                   sig_cell(double(i + 1) / n, 6)});
     std::string said = s.name + ": mean rank " + rank + " over " + std::to_string(s.maps) + " map(s), " +
                        fmt_fixed(100.0 * double(v.size()) / n, 1) + "% of " + std::to_string(s.rows.size()) +
                        " runs reached the target";

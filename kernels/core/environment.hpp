@@ -14,6 +14,8 @@ class ObstacleIndex;
 struct Rect {
   double x0, y0, x1, y1;  // lower-left and upper-right corners, metres
   bool contains(double x, double y) const { return x > x0 && x < x1 && y > y0 && y < y1; }
+  // The closed rectangle: its edges too.
+  bool contains_closed(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
 };
 
 struct Environment {

@@ -270,13 +270,7 @@ std::string check_ranges(const RunParams& p) {
 }
 
 std::string variant_name(const RunParams& p) {
-  if (p.planner == Planner::logistic) return "logistic";
-  if (p.planner == Planner::chebyshev) return "chebyshev";
-  if (p.planner == Planner::contraction) return "contraction";
-  if (p.planner == Planner::bouncing) return "bouncing";
-  if (p.planner == Planner::random_walk) return "random_walk";
-  if (p.planner == Planner::random_bounce) return "random_bounce";
-  if (p.planner == Planner::lawnmower) return "lawnmower";
+  if (p.planner != Planner::arnold) return to_string(p.planner);  // only the Arnold family has techniques
   std::string s;
   auto add = [&](const char* part) {
     if (!s.empty()) s += '+';

@@ -27,10 +27,8 @@ void unique_sorted(std::vector<double>& v) {
 }  // namespace
 
 int RectDecomposition::region_at(double x, double y) const {
-  for (std::size_t r = 0; r < regions.size(); ++r) {
-    const Rect& b = regions[r].box;
-    if (x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1) return int(r);
-  }
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    if (regions[r].box.contains_closed(x, y)) return int(r);
   return -1;
 }
 

@@ -15,8 +15,6 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 double dist(Point a, Point b) { return std::hypot(b.x - a.x, b.y - a.y); }
 
-bool holds(const Rect& b, Point q) { return q.x >= b.x0 && q.x <= b.x1 && q.y >= b.y0 && q.y <= b.y1; }
-
 }  // namespace
 
 RegionTransit::RegionTransit(const RectDecomposition& d) : d_(d), portals_of_(d.regions.size()) {
@@ -39,7 +37,7 @@ void RegionTransit::search_from(Point p) {
   from_ = p;
   from_regions_.clear();
   for (std::size_t r = 0; r < d_.regions.size(); ++r)
-    if (holds(d_.regions[r].box, p)) from_regions_.push_back(int(r));
+    if (d_.regions[r].box.contains_closed(p.x, p.y)) from_regions_.push_back(int(r));
   dist_.assign(portals_.size(), inf);
   prev_.assign(portals_.size(), -1);
   using Item = std::pair<double, int>;  // ties pop the lower portal first: deterministic

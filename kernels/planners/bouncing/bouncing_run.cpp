@@ -27,7 +27,7 @@ std::vector<Policy> policies(const RunParams& p) {
 bool free_at(const Environment& env, double x, double y) {
   if (x <= 0 || x >= env.lx || y <= 0 || y >= env.ly) return false;
   for (const Rect& o : env.obstacles)
-    if (x >= o.x0 && x <= o.x1 && y >= o.y0 && y <= o.y1) return false;
+    if (o.contains_closed(x, y)) return false;
   return true;
 }
 

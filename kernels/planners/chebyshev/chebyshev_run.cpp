@@ -19,8 +19,6 @@ namespace {
 // loop forever; after this many tries the run ends as stuck.
 constexpr long max_tries = 10'000'000;
 
-bool contains(const Rect& b, double x, double y) { return x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1; }
-
 class ChebyshevRun {
  public:
   ChebyshevRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r, TraceSink* trace)
@@ -111,7 +109,7 @@ class ChebyshevRun {
       const auto [gx, gy] = next_subgoal(box);
       if (ended_) return;
       walk_to(gx, gy, kind);
-      if (contains(target, gx, gy)) return;
+      if (target.contains_closed(gx, gy)) return;
     }
   }
 
