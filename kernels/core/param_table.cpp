@@ -87,6 +87,7 @@ std::string_view coeff_help(int i) {
       const char* sep = " ";
       for_each_system([&](auto tag) {
         using F = typename decltype(tag)::type;
+        if constexpr (F::defaults.count == 0) return;  // the Arnold flow's are A, B, C
         if (k >= F::defaults.count) return;
         s.append(sep).append(F::name).append(" ").append(F::defaults.names[k]).append(" = ");
         s.append(format_number(F::defaults.coeffs().at(k)));

@@ -142,8 +142,10 @@ inline Vec3<double> system_ic(const RunParams& p) {
 // sys_a..sys_d as set (NaN: unset).
 inline SystemCoeffs<double> set_system_coeffs(const RunParams& p) { return {p.sys_a, p.sys_b, p.sys_c, p.sys_d}; }
 
-// A flow's coefficients: sys_a..sys_d, each unset one the flow's default.
+// A system's coefficients: the Arnold flow's are seed 000's A, B, C; any
+// other's sys_a..sys_d, each unset one the system's default.
 inline SystemCoeffs<double> system_coeffs(const RunParams& p) {
+  if (p.system == arnold_system) return {p.A, p.B, p.C, 0.0};
   const SystemCoeffs<double> set = set_system_coeffs(p), d = system_defaults(p.system).coeffs();
   return {or_default(set.a, d.a), or_default(set.b, d.b), or_default(set.c, d.c), or_default(set.d, d.d)};
 }

@@ -8,16 +8,25 @@
 namespace chaosweep {
 
 Vec3<double> LaneBinding::lane_state(const LaneArrays& a, int l) const {
-  const Vec3<double> u{a.x[l], a.y[l], a.z[l]};
-  return run_.sys_ == arnold_system ? from_lane(u, run_.ds_) : u;
+  Vec3<double> u{a.x[l], a.y[l], a.z[l]};
+  with_system(run_.sys_, [&](auto tag) {
+    using F = typename decltype(tag)::type;
+    if constexpr (CarriedSystem<F>) u = F::from_lane(u, run_.ds_);
+  });
+  return u;
 }
 
 Trig3<double> LaneBinding::lane_trig(const LaneArrays& a, int l) const {
-  if (run_.sys_ != arnold_system) return run_.trig_;  // a listed system carries no trig
-  return from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, run_.ds_);
+  Trig3<double> t = run_.trig_;  // a system that carries nothing
+  with_system(run_.sys_, [&](auto tag) {
+    using F = typename decltype(tag)::type;
+    if constexpr (CarriedSystem<F>)
+      t = F::from_lane(Trig3<double>{a.sx[l], a.cx[l], a.sy[l], a.cy[l], a.sz[l], a.cz[l]}, run_.ds_);
+  });
+  return t;
 }
 
-// A listed system's step inputs (LaneArrays::system): its state as labelled, no trig.
+// A system's step inputs (LaneArrays::system): its state as labelled, no carry.
 void LaneBinding::write_system_step(LaneArrays& a, int l) const {
   a.x[l] = run_.u_.x;
   a.y[l] = run_.u_.y;
@@ -35,16 +44,13 @@ void LaneBinding::write_system_step(LaneArrays& a, int l) const {
   a.small[l] = 0.0;
 }
 
-void LaneBinding::write_lane(LaneArrays& a, int l) {
-  if (run_.sys_ != arnold_system) write_system_step(a, l);
-  else write_arnold_step(a, l);
-  write_robot(a, l);
-}
-
-void LaneBinding::write_arnold_step(LaneArrays& a, int l) const {
-  const Vec3<double> u = to_lane(run_.u_, run_.ds_);
-  const Trig3<double> t = to_lane(run_.trig_, run_.ds_);
-  const StepScale<double> sc = step_scale(to_lane(run_.k_, run_.ds_), run_.h_, run_.p_.f * run_.p_.v * run_.h_);
+// A carried system's (CarriedSystem): in its lane labels, its state, carry,
+// step constants and mode.
+template <class F>
+void LaneBinding::write_carried_step(LaneArrays& a, int l) const {
+  const Vec3<double> u = F::to_lane(run_.u_, run_.ds_);
+  const Trig3<double> t = F::to_lane(run_.trig_, run_.ds_);
+  const StepScale<double> sc = F::scale(F::to_lane(run_.fk_, run_.ds_), run_.h_, run_.p_.f * run_.p_.v * run_.h_);
   a.x[l] = u.x;
   a.y[l] = u.y;
   a.z[l] = u.z;
@@ -58,7 +64,16 @@ void LaneBinding::write_arnold_step(LaneArrays& a, int l) const {
   a.kB[l] = sc.kh.B;
   a.kC[l] = sc.kh.C;
   a.pos6[l] = sc.pos6;
-  a.small[l] = small_shift_mode(run_.h_, run_.p_.A, run_.p_.B, run_.p_.C) ? 1.0 : 0.0;
+  a.small[l] = F::small(run_.fk_, run_.h_) ? 1.0 : 0.0;
+}
+
+void LaneBinding::write_lane(LaneArrays& a, int l) {
+  with_system(run_.sys_, [&](auto tag) {
+    using F = typename decltype(tag)::type;
+    if constexpr (CarriedSystem<F>) write_carried_step<F>(a, l);
+    else write_system_step(a, l);
+  });
+  write_robot(a, l);
 }
 
 void LaneBinding::write_robot(LaneArrays& a, int l) {

@@ -37,12 +37,13 @@ class LaneBinding {
  private:
   // The robot, clock, counts, cells and new-cell time the integrator advanced in lane l.
   void take_lane_progress(const LaneArrays& a, int l);
-  // Lane l's Arnold state and its trig in the run's own labels.
+  // Lane l's system state and its carry in the run's own labels.
   Vec3<double> lane_state(const LaneArrays& a, int l) const;
   Trig3<double> lane_trig(const LaneArrays& a, int l) const;
-  // write_lane's parts: the system's step inputs (Arnold flow, relabelled,
-  // or a flow), then the robot, clock, grid and fast-path inputs.
-  void write_arnold_step(LaneArrays& a, int l) const;
+  // write_lane's parts: the system's step inputs (a carried system's in its
+  // lane labels, or any other's), then the robot, clock, grid and fast-path inputs.
+  template <class F>
+  void write_carried_step(LaneArrays& a, int l) const;
   void write_system_step(LaneArrays& a, int l) const;
   void write_robot(LaneArrays& a, int l);
   // Lane l's cell and the window's distinct count, from the run.

@@ -1,15 +1,12 @@
 #pragma once
 // The lane loop shared by every width: load N interleaved vectors of W lanes
 // from the arrays, take RK4 steps (the same arithmetic as the scalar
-// reference, see arnold_flow.hpp) with the state in registers, apply each
+// reference, see kernels/systems/) with the state in registers, apply each
 // step's common case (fast_path, mark_entered) until a step leaves the sink
 // work, store, let the sink handle it. Include only from
 // lane_kernel_<target>.cpp.
-#include <type_traits>
-
 #include "kernels/core/boundary.hpp"
 #include "kernels/lanes/lane_arrays.hpp"
-#include "kernels/systems/arnold_flow.hpp"
 #include "kernels/systems/system_list.hpp"
 
 namespace chaosweep {
@@ -167,7 +164,8 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
   return covered;
 }
 
-// One vector's inputs to a step, from the arrays at lane offset o.
+// One vector's inputs to a carried system's step (CarriedSystem: the Arnold
+// flow's form), from the arrays at lane offset o.
 template <class V>
 struct StepInput {
   Vec3<V> u;
@@ -240,18 +238,19 @@ struct StepsDone {
 
 // Steps the lanes from the arrays' state, keeping it in registers, until a
 // step leaves the sink work; stores every lane's state after that step.
-// Flow: void for the Arnold flow (its own step), else a flow or map of
-// system_list.hpp (system_step, Staged ignored).
-template <class V, int N, bool Staged, bool General, class Flow = void>
+// F: the system of system_list.hpp every lane runs; a carried system by its
+// own step (F::step, F::step2 when Staged), any other by system_step
+// (Staged ignored).
+template <class V, int N, bool Staged, bool General, class F>
 inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
-  constexpr bool arnold = std::is_void_v<Flow>;
+  constexpr bool carried = CarriedSystem<F>;
   StepInput<V> in[N];
   SystemInput<V> fin[N];
   FastPathInputs<V> fixed[N];
   for (int k = 0; k < N; ++k) {
-    if constexpr (arnold) in[k] = load_step_input<V>(a, k * w);
+    if constexpr (carried) in[k] = load_step_input<V>(a, k * w);
     else fin[k] = load_system_input<V>(a, k * w);
     fixed[k] = load_fast_path_inputs<V>(a, k * w);
   }
@@ -259,12 +258,12 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
   do {
     ++d.passes;
     Rk4Step<V> s[N];
-    if constexpr (!arnold) {
+    if constexpr (!carried) {
       for (int k = 0; k < N; ++k) {
-        const SystemStep<V> f = system_step<Flow>(fin[k].u, fin[k].k, fin[k].hs, fin[k].h, fin[k].h_pos);
+        const SystemStep<V> f = system_step<F>(fin[k].u, fin[k].k, fin[k].hs, fin[k].h, fin[k].h_pos);
         s[k].u = f.u;
         const V zero = lane::splat<V>(0.0);
-        s[k].t = Trig3<V>{zero, zero, zero, zero, zero, zero};  // a listed system carries no trig
+        s[k].t = Trig3<V>{zero, zero, zero, zero, zero, zero};  // it carries nothing
         s[k].dX = f.dX;
         s[k].dY = f.dY;
       }
@@ -275,10 +274,10 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
         wk[k].small = in[k].small;
       }
       if (lane::all(wk[0].small & wk[1].small))
-        rk4_step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
-      else rk4_step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
+        F::template step2<true>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
+      else F::template step2<false>(wk[0], wk[1], in[0].t, in[1].t, in[0].sc, in[1].sc, s[0], s[1]);
     } else {
-      for (int k = 0; k < N; ++k) s[k] = rk4_step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
+      for (int k = 0; k < N; ++k) s[k] = F::step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
     }
     unsigned entered = 0;
     d.applied = 0;
@@ -286,7 +285,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
       const FastPathBits b = fast_path<V, General>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)));
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
-      if constexpr (arnold) {
+      if constexpr (carried) {
         in[k].u = s[k].u;
         in[k].t = s[k].t;
       } else {
@@ -302,29 +301,25 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
 }
 
 // The lanes one kernel keeps in flight: N vectors of V (a.lanes, see
-// lane_count). Their Arnold state stays in registers from step to step while
+// lane_count). Their system state stays in registers from step to step while
 // no lane needs the sink; before the sink runs, every lane's state goes to
 // the arrays, and after it comes back from them (the sink may rewrite any).
 // flatten: the step and the fast path inline into one loop body, one for
 // lanes that are all under the mirror boundary on open maps and one for the
 // others.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
-// The lanes all run one system (a.system): the Arnold flow's step, or one
-// system_step per vector for a flow or map.
+// The lanes all run one system (a.system, LaneArrays::system): a carried
+// system's own step (the Arnold flow's), or one system_step per vector.
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
     bool general = false;
     for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.clear[l] != nullptr;
     StepsDone d;
-    if (a.system == arnold_system) {
-      d = general ? steps_until_sink<V, N, Staged, true>(a) : steps_until_sink<V, N, Staged, false>(a);
-    } else {  // every lane runs a.system (LaneArrays::system)
-      with_system(a.system, [&](auto tag) {
-        using F = typename decltype(tag)::type;
-        d = general ? steps_until_sink<V, N, false, true, F>(a) : steps_until_sink<V, N, false, false, F>(a);
-      });
-    }
+    with_system(a.system, [&](auto tag) {
+      using F = typename decltype(tag)::type;
+      d = general ? steps_until_sink<V, N, Staged, true, F>(a) : steps_until_sink<V, N, Staged, false, F>(a);
+    });
     count_steps<V>(a, d.passes, d.applied);
     a.flagged = d.flagged;
     a.covered = d.covered;

@@ -6,9 +6,10 @@
 //   template <class T> static Vec3<T> rhs(const Vec3<T>& u, const SystemCoeffs<T>& k);
 // The robot is coupled to it as to the Arnold flow (seed 000, Eq. 3): its
 // heading is the coordinate DSindex picks, the robot moves at speed v along
-// it. kernels/systems/flows/ holds the flows. The Arnold flow keeps its own
-// step (arnold_flow.hpp: carried trig, small-shift stages), which this one
-// reproduces only to RK4's own error.
+// it. kernels/systems/flows/ holds the flows. The Arnold flow, a carried
+// system (system.hpp), brings its own step (arnold_flow.hpp: carried trig,
+// small-shift stages), the same RK4 step as this one to rounding, in other
+// operations (so not bit for bit).
 #include "kernels/systems/system.hpp"
 
 namespace chaosweep {

@@ -5,6 +5,8 @@
 // written once over the lane type T (double or a SIMD vector, see
 // math/lane_math.hpp), so the scalar reference and every lane width compute
 // the same numbers. system_list.hpp lists the systems and steps any of them.
+#include <concepts>
+
 #include "kernels/math/lane_math.hpp"
 #include "kernels/math/sincos.hpp"
 #include "kernels/systems/arnold_flow.hpp"
@@ -57,6 +59,32 @@ inline void heading_trig(T angle, T& c, T& s) {
 template <class T>
 inline void heading_trig(const Vec3<T>& u, const HeadingSelect<T>& h, T& c, T& s) {
   heading_trig(heading_coordinate(u, h), c, s);
+}
+
+// A carried system carries state from one step to the next and brings its
+// own step for it, instead of the shared ones (flow_rk4_step, map_step). The
+// Arnold flow (flows/arnold.hpp) carries its state's sines and cosines, so
+// an RK4 step needs no full sincos. Beside a flow's parts it has
+//   template <class T> static Trig3<T> carry(const Vec3<T>& u);   // the carry of a state
+//   static StepScale<double> scale(const SystemCoeffs<double>& k, double h, double h_pos);
+//   static bool small(const SystemCoeffs<double>& k, double h);   // its step's mode
+//   template <class T, class H> static Rk4Step<T> step(u, carry, scale, heading, small);
+//   template <bool AllSmall, ...> static void step2(...);          // two vectors interleaved
+//   to_lane / from_lane (state, carry, coefficients): the labels its lanes
+//   run in, the heading coordinate moved to z (HeadingZ).
+// A run carries the trig of its state afresh at its start and at each
+// segment's, so a carry is a pure function of the run.
+template <class F>
+concept CarriedSystem = requires(const Vec3<double>& u) {
+  { F::carry(u) } -> std::same_as<Trig3<double>>;
+};
+
+// The state a run of system F starts from: its initial state, wrapped by a
+// system whose coordinates are angles (F::start), as is.
+template <class F>
+inline Vec3<double> system_start(const Vec3<double>& u) {
+  if constexpr (requires { F::start(u); }) return F::start(u);
+  else return u;
 }
 
 }  // namespace chaosweep

@@ -1,7 +1,7 @@
 #pragma once
 // The chaotic systems the seed-000 planner family can be driven by: the
-// Arnold flow (index 0, its own step in arnold_flow.hpp) and the flows of
-// flows/ and maps of maps/ (index 1, 2, ... in the order of
+// Arnold flow (index 0, a carried system: its own step, arnold_flow.hpp) and
+// the flows of flows/ and maps of maps/ (index 1, 2, ... in the order of
 // `ListedSystems`). A run names its system by that index (RunParams::system;
 // the spec by the system's name). Adding a system is adding its header and
 // its name here: the parameter table, the scalar planner and every lane
@@ -10,6 +10,7 @@
 
 #include "kernels/systems/chaotic_map.hpp"
 #include "kernels/systems/flow.hpp"
+#include "kernels/systems/flows/arnold.hpp"
 #include "kernels/systems/flows/chen.hpp"
 #include "kernels/systems/flows/chua.hpp"
 #include "kernels/systems/flows/lorenz.hpp"
@@ -22,11 +23,10 @@ struct SystemList {
   static constexpr int size = sizeof...(F);
 };
 
-using ListedSystems = SystemList<Lorenz, Chen, Chua, Chirikov>;
+using ListedSystems = SystemList<Arnold, Lorenz, Chen, Chua, Chirikov>;
 
-inline constexpr int arnold_system = 0;
-inline constexpr double arnold_ic[3] = {0.0, 1.0, 0.0};  // docs/spec.md §2
-inline constexpr int system_count = 1 + ListedSystems::size;
+inline constexpr int arnold_system = 0;  // Arnold's place in the list (its coefficients are A, B, C)
+inline constexpr int system_count = ListedSystems::size;
 
 template <class F>
 struct SystemTag {
@@ -45,11 +45,11 @@ inline void each(Fn&& fn, SystemList<F...>) {
 }
 }  // namespace system_detail
 
-// Calls fn(SystemTag<F>{}) for the system of index s (1..); nothing for
-// the Arnold flow (0) or an index out of range.
+// Calls fn(SystemTag<F>{}) for the system of index s; nothing for an index
+// out of range.
 template <class Fn>
 inline void with_system(int s, Fn&& fn) {
-  if (s >= 1 && s < system_count) system_detail::visit(s - 1, fn, ListedSystems{});
+  if (s >= 0 && s < system_count) system_detail::visit(s, fn, ListedSystems{});
 }
 
 // Calls fn(SystemTag<F>{}) for every listed system, in index order.
@@ -59,14 +59,14 @@ inline void for_each_system(Fn&& fn) {
 }
 
 inline std::string_view system_name(int s) {
-  std::string_view n = s == arnold_system ? "arnold" : "?";
+  std::string_view n = "?";
   with_system(s, [&](auto tag) { n = decltype(tag)::type::name; });
   return n;
 }
 
-// A system's defaults (the Arnold flow: no listed coefficients, its ic).
+// A system's defaults (the Arnold flow: no sys_* coefficients, its ic).
 inline SystemDefaults system_defaults(int s) {
-  SystemDefaults d{0, 0, 0, 0, 0, {"", "", "", ""}, {arnold_ic[0], arnold_ic[1], arnold_ic[2]}};
+  SystemDefaults d{0, 0, 0, 0, 0, {"", "", "", ""}, {0, 0, 0}};
   with_system(s, [&](auto tag) { d = decltype(tag)::type::defaults; });
   return d;
 }
@@ -77,6 +77,36 @@ template <class F, class T>
 inline SystemStep<T> system_step(const Vec3<T>& u, const SystemCoeffs<T>& k, const HeadingSelect<T>& hs, T h, T h_pos) {
   if constexpr (ChaoticMap<F>) return map_step<F>(u, k, hs, h_pos);
   else return flow_rk4_step<F>(u, k, hs, h, h_pos);
+}
+
+// One step of listed system F from state u carrying t (CarriedSystem: its
+// own step in its mode for h; any other: system_step, t passed on as is).
+template <class F>
+inline Rk4Step<double> step_with_carry(const Vec3<double>& u, const Trig3<double>& t, const SystemCoeffs<double>& k,
+                                       const HeadingSelect<double>& hs, double h, double h_pos) {
+  if constexpr (CarriedSystem<F>) {
+    return F::step(u, t, F::scale(k, h, h_pos), hs, F::small(k, h));
+  } else {
+    const SystemStep<double> s = system_step<F>(u, k, hs, h, h_pos);
+    return {s.u, t, s.dX, s.dY};
+  }
+}
+
+// The carry of state u for system s (CarriedSystem), else `t` unchanged.
+inline Trig3<double> system_carry(int s, const Vec3<double>& u, const Trig3<double>& t) {
+  Trig3<double> c = t;
+  with_system(s, [&](auto tag) {
+    using F = typename decltype(tag)::type;
+    if constexpr (CarriedSystem<F>) c = F::carry(u);
+  });
+  return c;
+}
+
+// The state a run of system s starts from (system_start).
+inline Vec3<double> system_start(int s, const Vec3<double>& u) {
+  Vec3<double> v = u;
+  with_system(s, [&](auto tag) { v = system_start<typename decltype(tag)::type>(u); });
+  return v;
 }
 
 // The number of coordinates a system has (a map may have 2: its z is

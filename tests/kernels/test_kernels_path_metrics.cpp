@@ -94,7 +94,9 @@ TEST(PathMetrics, EveryPlannerReportsThemInItsResult) {
     EXPECT_GT(r.coverage_area, 0.0) << to_string(planner);
     const double last = r.status == Status::ok ? r.coverage_time : r.t_end;
     EXPECT_LT(r.coverage_area, std::max(last, run_budget(p, r.t_opt)) / r.t_opt) << to_string(planner);
-    if (r.status == Status::ok) EXPECT_LT(r.coverage_area, r.pr) << to_string(planner);
+    if (r.status == Status::ok) {
+      EXPECT_LT(r.coverage_area, r.pr) << to_string(planner);
+    }
   }
 }
 

@@ -100,6 +100,45 @@ TEST(Flows, TheSharedStepIsClassicRk4WithTheRobotCoupledByItsHeadingCoordinate) 
   EXPECT_NEAR(a.dY, b.dY, 1e-15);
 }
 
+// The Arnold flow is listed system 0, a carried system: its own step (carried
+// trig, small-shift stages, both modes) is the same RK4 step as the shared
+// flow step of its right-hand side, to rounding (the state mod 2 pi), and a
+// run starts from its initial state wrapped; its coefficients are A, B, C.
+TEST(Flows, TheArnoldFlowIsListedAndItsOwnStepIsTheSharedRk4OfItsField) {
+  EXPECT_EQ(system_index("arnold"), arnold_system);
+  static_assert(CarriedSystem<Arnold> && !CarriedSystem<Lorenz> && !CarriedSystem<Chirikov>);
+  const SystemCoeffs<double> k{1.0, 0.7, 0.43, 0.0};
+  for (double h : {0.1, 0.5}) {  // 0.1: small-shift mode; 0.5: full sincos
+    EXPECT_EQ(Arnold::small(k, h), h == 0.1);
+    for (int ds = 1; ds <= 3; ++ds) {
+      const Vec3<double> u{0.3, -1.2, 2.9};
+      const HeadingSelect<double> hs = heading_select(ds);
+      const Rk4Step<double> own = step_with_carry<Arnold>(u, Arnold::carry(u), k, hs, h, 0.2);
+      const SystemStep<double> shared = flow_rk4_step<Arnold>(u, k, hs, h, 0.2);
+      EXPECT_NEAR(wrap_pi(own.u.x - shared.u.x), 0.0, 1e-14) << "h " << h << " ds " << ds;
+      EXPECT_NEAR(wrap_pi(own.u.y - shared.u.y), 0.0, 1e-14) << "h " << h << " ds " << ds;
+      EXPECT_NEAR(wrap_pi(own.u.z - shared.u.z), 0.0, 1e-14) << "h " << h << " ds " << ds;
+      EXPECT_NEAR(own.dX, shared.dX, 1e-15) << "h " << h << " ds " << ds;
+      EXPECT_NEAR(own.dY, shared.dY, 1e-15) << "h " << h << " ds " << ds;
+      // The carry it hands on is the trig of the state it reached.
+      const Trig3<double> t = Arnold::carry(own.u);
+      EXPECT_NEAR(own.t.sx, t.sx, 1e-14);
+      EXPECT_NEAR(own.t.cz, t.cz, 1e-14);
+    }
+  }
+  RunParams p;
+  p.A = 1.0, p.B = 0.7, p.C = 0.43, p.sys_a = 5.0;  // sys_* are not Arnold's
+  const SystemCoeffs<double> got = system_coeffs(p);
+  EXPECT_EQ(got.a, 1.0);
+  EXPECT_EQ(got.b, 0.7);
+  EXPECT_EQ(got.c, 0.43);
+  const Vec3<double> start = system_start(arnold_system, {4.0, -4.0, 1.0});
+  EXPECT_NEAR(start.x, 4.0 - 2 * M_PI, 1e-15);
+  EXPECT_NEAR(start.y, 2 * M_PI - 4.0, 1e-15);
+  EXPECT_EQ(start.z, 1.0);
+  EXPECT_EQ(system_start(system_index("lorenz"), {4.0, -4.0, 1.0}).x, 4.0);  // not angles
+}
+
 // How far a system moves u: a flow's speed, a map's jump to its image (both
 // 0 at a fixed point).
 template <class F>

@@ -22,11 +22,7 @@ int auto_th(const RunParams& p, const Environment& env) {
 
 }  // namespace
 
-Vec3<double> initial_state(const RunParams& p) {
-  const Vec3<double> u = jittered_ic(p);
-  if (p.system != arnold_system) return u;  // only the Arnold flow's coordinates are angles
-  return {wrap_pi(u.x), wrap_pi(u.y), wrap_pi(u.z)};
-}
+Vec3<double> initial_state(const RunParams& p) { return system_start(p.system, jittered_ic(p)); }
 
 LogisticMap initial_logistic(const RunParams& p) {
   double x0 = p.logistic_x0;
@@ -46,11 +42,10 @@ PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid&
       trace_(trace),
       needed_(cells_needed(p, grid)),
       budget_(run_budget(p, r.t_opt)),
-      k_{p.A, p.B, p.C},
       sys_(p.system),
       fk_(system_coeffs(p)),
       u_(initial_state(p)),
-      trig_(trig3(u_)),
+      trig_(system_carry(p.system, u_, {})),
       ds_(p.ds_index),
       h_(p.dt),
       last_visited_(0),
@@ -108,9 +103,9 @@ void PlannerRun::begin_segment() {
   seg_c_u_ = grid_.free_cells() - grid_.visited_cells();  // unvisited before the segment
   seg_before_ = grid_.visited_cells();
   seg_step_ = 0;
-  // A segment starts from exact trig: bounds the carried trig's drift (a
-  // flow carries none).
-  if (sys_ == arnold_system) trig_ = trig3(u_);
+  // A segment starts from an exact carry: bounds the carried trig's drift
+  // (a system that carries none keeps its `trig_` unused).
+  trig_ = system_carry(sys_, u_, trig_);
 }
 
 void PlannerRun::end_segment() {
@@ -176,17 +171,10 @@ void PlannerRun::take_point(const Step& step) {
 
 void PlannerRun::arnold_step() {
   const HeadingSelect<double> hs = heading_select(ds_);
-  if (sys_ == arnold_system) {
-    take_point([&](const Vec3<double>& u, const Trig3<double>& t, double h, double h_pos) {
-      return rk4_step(u, t, k_, hs, h, h_pos);
-    });
-    return;
-  }
   with_system(sys_, [&](auto tag) {
     using F = typename decltype(tag)::type;
     take_point([&](const Vec3<double>& u, const Trig3<double>& t, double h, double h_pos) {
-      const SystemStep<double> s = system_step<F>(u, fk_, hs, h, h_pos);
-      return Rk4Step<double>{s.u, t, s.dX, s.dY};  // a listed system carries no trig
+      return step_with_carry<F>(u, t, fk_, hs, h, h_pos);
     });
   });
 }

@@ -81,13 +81,13 @@ class PlannerRun {
 
   long needed_;
   double budget_;
-  ArnoldCoeffs<double> k_;
   int sys_;                  // RunParams::system
-  SystemCoeffs<double> fk_;  // a flow's coefficients (system_coeffs)
+  SystemCoeffs<double> fk_;  // the system's coefficients (system_coeffs: Arnold's A, B, C)
   Vec3<double> u_;
-  // Trig of u_, carried by rk4_step. u_ changes by RK4 steps alone (not by
-  // switching, zoning or transits); full sincos at the start and at every
-  // segment's start (a pure function of the run, like its segments).
+  // A carried system's carry of u_ (the Arnold flow: its trig, carried by
+  // rk4_step). u_ changes by its steps alone (not by switching, zoning or
+  // transits); taken afresh at the start and at every segment's start (a
+  // pure function of the run, like its segments).
   Trig3<double> trig_;
   int ds_;
   double h_;
