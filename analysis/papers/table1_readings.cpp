@@ -16,7 +16,7 @@ namespace chaosweep {
 
 namespace {
 
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double no_reading = std::numeric_limits<double>::quiet_NaN();
 
 struct Case {
   std::vector<std::string> reading;  // the reading columns' values
@@ -24,7 +24,7 @@ struct Case {
   bool obstacles = false, map_zoning = false;
   std::string technique;
   std::vector<std::size_t> rows;
-  double median = nan;  // timeouts count as infinite (tuple_score)
+  double median = no_reading;  // timeouts count as infinite (tuple_score)
 };
 
 // The 5% and 95% points of median(a) / median(b) over bootstrap resamples of
@@ -143,7 +143,7 @@ using PaperCts = std::map<std::string, std::pair<double, double>>;
 
 double paper_ct(const PaperCts& paper, const std::string& label) {
   const auto p = paper.find(label);
-  return p == paper.end() ? nan : p->second.first;
+  return p == paper.end() ? no_reading : p->second.first;
 }
 
 // The columns after the reading: the row's CTs, the paper's, and the ratio

@@ -24,19 +24,19 @@ namespace {
 // 0.8 of a 12 m map, not 9.600000000000001; "inf", "nan").
 std::string shown(double v) { return format_number(v, 6); }
 
-[[noreturn]] void fail(const std::string& file, const std::string& what) {
+[[noreturn]] void env_fail(const std::string& file, const std::string& what) {
   throw std::runtime_error("environment " + file + ": " + what);
 }
 
 double number(const toml::node& n, const std::string& file, const std::string& key) {
   if (auto v = n.value<double>()) return *v;
-  fail(file, "'" + key + "' must be a number");
+  env_fail(file, "'" + key + "' must be a number");
 }
 
 // A number that must be finite (TOML has nan and inf literals).
 double finite_number(const toml::node& n, const std::string& file, const std::string& key) {
   const double v = number(n, file, key);
-  if (!std::isfinite(v)) fail(file, "'" + key + "' = " + shown(v) + " must be a finite number");
+  if (!std::isfinite(v)) env_fail(file, "'" + key + "' = " + shown(v) + " must be a finite number");
   return v;
 }
 
@@ -46,25 +46,25 @@ std::pair<double, double> pair_of(const toml::node& n, const std::string& file, 
     return {v, v};
   }
   const toml::array* a = n.as_array();
-  if (!a || a->size() != 2) fail(file, "'" + key + "' must be a number or [x, y]");
+  if (!a || a->size() != 2) env_fail(file, "'" + key + "' must be a number or [x, y]");
   return {finite_number(*a->get(0), file, key + "[0]"), finite_number(*a->get(1), file, key + "[1]")};
 }
 
 // "[0, 10] x [0, 10] m": the map's extent, for messages.
 std::string map_bounds(const Environment& env) { return "[0, " + shown(env.lx) + "] x [0, " + shown(env.ly) + "] m"; }
 
-toml::table parse_toml(const std::string& text, const std::string& path) {
+toml::table parse_environment_toml(const std::string& text, const std::string& path) {
   try {
     check_toml_text(text);
     toml::table t = toml::parse(text, path);
     check_toml_integers(t);
     return t;
   } catch (const TomlInputError& e) {
-    fail(path, e.what());
+    env_fail(path, e.what());
   } catch (const toml::parse_error& e) {
     std::ostringstream os;
     os << e.description() << " at line " << e.source().begin.line;
-    fail(path, os.str());
+    env_fail(path, os.str());
   }
 }
 
@@ -75,18 +75,18 @@ bool read_name_and_units(const toml::table& t, const std::string& path, Environm
   for (auto&& [k, node] : t) {
     const std::string key(k.str());
     if (key == "name") {
-      if (!node.is_string()) fail(path, "'name' must be a string");
+      if (!node.is_string()) env_fail(path, "'name' must be a string");
       env.name = *node.value<std::string>();
     } else if (key == "units") {
       const auto u = node.value<std::string>();
       if (!u || (*u != "relative" && *u != "m"))
-        fail(path, "'units' must be \"relative\" (fractions of the map side) or \"m\"");
+        env_fail(path, "'units' must be \"relative\" (fractions of the map side) or \"m\"");
       relative = *u == "relative";
     } else if (key != "size" && key != "start" && key != "start_units" && key != "obstacles" && key != "description" &&
                key != "clutter") {
-      fail(path, "unknown key '" + key +
-                     "' (allowed: name, description, units, size, start, start_units, obstacles, "
-                     "clutter)");
+      env_fail(path, "unknown key '" + key +
+                         "' (allowed: name, description, units, size, start, start_units, obstacles, "
+                         "clutter)");
     }
   }
   return relative;
@@ -97,9 +97,9 @@ void read_size(const toml::table& t, const std::string& path, bool relative, dou
   if (const toml::node* s = t.get("size")) {
     std::tie(env.lx, env.ly) = pair_of(*s, path, "size");
     if (!(env.lx > 0 && env.ly > 0))
-      fail(path, "'size' = " + shown(env.lx) + " x " + shown(env.ly) + " must be positive");
+      env_fail(path, "'size' = " + shown(env.lx) + " x " + shown(env.ly) + " must be positive");
   } else if (!relative) {
-    fail(path, "'size' is required when units = \"m\"");
+    env_fail(path, "'size' is required when units = \"m\"");
   } else {
     env.lx = size_x;
     env.ly = size_y;
@@ -113,7 +113,7 @@ void read_start(const toml::table& t, const std::string& path, bool relative, En
   bool start_m = !relative;
   if (const toml::node* su = t.get("start_units")) {
     const auto u = su->value<std::string>();
-    if (!u || (*u != "relative" && *u != "m")) fail(path, "'start_units' must be \"relative\" or \"m\"");
+    if (!u || (*u != "relative" && *u != "m")) env_fail(path, "'start_units' must be \"relative\" or \"m\"");
     start_m = *u == "m";
   }
   env.start = start_m ? std::pair{x, y} : std::pair{x * env.lx, y * env.ly};
@@ -122,21 +122,21 @@ void read_start(const toml::table& t, const std::string& path, bool relative, En
 // obstacles[i] = {x, y, w, h}, in metres (sx, sy: the map side per unit).
 Rect read_obstacle(const toml::node& node, const std::string& path, const std::string& where, double sx, double sy) {
   const toml::table* r = node.as_table();
-  if (!r) fail(path, where + " must be a table {x, y, w, h}");
+  if (!r) env_fail(path, where + " must be a table {x, y, w, h}");
   double v[4];
   const char* names[4] = {"x", "y", "w", "h"};
   for (int j = 0; j < 4; ++j) {
     const toml::node* n = r->get(names[j]);
-    if (!n) fail(path, where + " lacks '" + names[j] + "'");
+    if (!n) env_fail(path, where + " lacks '" + names[j] + "'");
     v[j] = finite_number(*n, path, where + "." + names[j]);
   }
   for (auto&& [k, value] : *r) {
     (void)value;
     const std::string key(k.str());
     if (key != "x" && key != "y" && key != "w" && key != "h")
-      fail(path, where + " has unknown key '" + key + "' (allowed: x, y, w, h)");
+      env_fail(path, where + " has unknown key '" + key + "' (allowed: x, y, w, h)");
   }
-  if (!(v[2] > 0 && v[3] > 0)) fail(path, where + ": w and h must be positive");
+  if (!(v[2] > 0 && v[3] > 0)) env_fail(path, where + ": w and h must be positive");
   return Rect{v[0] * sx, v[1] * sy, (v[0] + v[2]) * sx, (v[1] + v[3]) * sy};
 }
 
@@ -145,7 +145,7 @@ void read_obstacles(const toml::table& t, const std::string& path, bool relative
   if (!o) return;
   const double sx = relative ? env.lx : 1.0, sy = relative ? env.ly : 1.0;
   const toml::array* arr = o->as_array();
-  if (!arr) fail(path, "'obstacles' must be an array of {x, y, w, h} tables");
+  if (!arr) env_fail(path, "'obstacles' must be an array of {x, y, w, h} tables");
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const std::string where = "obstacles[" + std::to_string(i) + "]";
     const Rect rect = read_obstacle(*arr->get(i), path, where, sx, sy);
@@ -155,10 +155,10 @@ void read_obstacles(const toml::table& t, const std::string& path, bool relative
     const double tol_x = 1e-9 * env.lx, tol_y = 1e-9 * env.ly;
     if (!(rect.x0 >= -tol_x && rect.y0 >= -tol_y && rect.x1 <= env.lx + tol_x && rect.y1 <= env.ly + tol_y)) {
       const bool wholly = rect.x0 >= env.lx || rect.y0 >= env.ly || rect.x1 <= 0 || rect.y1 <= 0;
-      fail(path, where + " spans [" + shown(rect.x0) + ", " + shown(rect.x1) + "] x [" + shown(rect.y0) + ", " +
-                     shown(rect.y1) + "] m: " + (wholly ? "it lies outside" : "it reaches outside") + " the map " +
-                     map_bounds(env) +
-                     (relative ? " (units = \"relative\": need 0 <= x, x + w <= 1, 0 <= y, y + h <= 1)" : ""));
+      env_fail(path, where + " spans [" + shown(rect.x0) + ", " + shown(rect.x1) + "] x [" + shown(rect.y0) + ", " +
+                         shown(rect.y1) + "] m: " + (wholly ? "it lies outside" : "it reaches outside") + " the map " +
+                         map_bounds(env) +
+                         (relative ? " (units = \"relative\": need 0 <= x, x + w <= 1, 0 <= y, y + h <= 1)" : ""));
     }
     env.obstacles.push_back(rect);
   }
@@ -170,7 +170,7 @@ std::uint64_t clutter_seed(const toml::node& node, const std::string& path, cons
   const double v = number(node, path, where);
   constexpr double exact = 9007199254740992.0;  // 2^53
   if (!(v >= 0 && v <= exact && v == std::floor(v)))
-    fail(path, where + " = " + shown(v) + " must be a whole number in [0, 2^53]");
+    env_fail(path, where + " = " + shown(v) + " must be a whole number in [0, 2^53]");
   return std::uint64_t(v);
 }
 
@@ -188,13 +188,13 @@ ClutterSpec read_clutter_table(const toml::table& ct, const std::string& path, b
     }
     const double v = number(node, path, where);
     if (key == "occupancy") {
-      if (!(v >= 0 && v <= 0.6)) fail(path, where + " must be in [0, 0.6]");
+      if (!(v >= 0 && v <= 0.6)) env_fail(path, where + " must be in [0, 0.6]");
       spec.occupancy = v;
     } else if (key == "min_side" || key == "max_side" || key == "gap") {
-      if (!(v >= 0)) fail(path, where + " must be >= 0");
+      if (!(v >= 0)) env_fail(path, where + " must be >= 0");
       (key == "min_side" ? spec.min_side : key == "max_side" ? spec.max_side : spec.gap) = v * unit;
     } else {
-      fail(path, "unknown key '" + where + "' (allowed: seed, occupancy, min_side, max_side, gap)");
+      env_fail(path, "unknown key '" + where + "' (allowed: seed, occupancy, min_side, max_side, gap)");
     }
   }
   return spec;
@@ -202,28 +202,29 @@ ClutterSpec read_clutter_table(const toml::table& ct, const std::string& path, b
 
 // Clutter the generator can place in this map.
 void check_clutter(const ClutterSpec& spec, const std::string& path, const Environment& env) {
-  if (!(spec.min_side > 0 && spec.max_side >= spec.min_side)) fail(path, "clutter needs 0 < min_side <= max_side");
+  if (!(spec.min_side > 0 && spec.max_side >= spec.min_side)) env_fail(path, "clutter needs 0 < min_side <= max_side");
   if (!(spec.max_side + 2 * spec.gap < std::min(env.lx, env.ly)))
-    fail(path, "clutter.max_side + 2 gap = " + shown(spec.max_side + 2 * spec.gap) + " m does not fit in the map (" +
-                   shown(env.lx) + " x " + shown(env.ly) + " m)");
+    env_fail(path, "clutter.max_side + 2 gap = " + shown(spec.max_side + 2 * spec.gap) +
+                       " m does not fit in the map (" + shown(env.lx) + " x " + shown(env.ly) + " m)");
   // Squares so small that the occupancy needs more of them than the
   // generator tries are a typo (1e-9 for 0.1), not a map.
   const double most = spec.occupancy * env.lx * env.ly / (spec.min_side * spec.min_side);
   if (most > max_clutter_attempts)
-    fail(path, "clutter.occupancy = " + shown(spec.occupancy) + " with squares of min_side = " + shown(spec.min_side) +
-                   " m takes up to " + shown(most) + " squares (more than " + std::to_string(max_clutter_attempts) +
-                   ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
+    env_fail(path, "clutter.occupancy = " + shown(spec.occupancy) +
+                       " with squares of min_side = " + shown(spec.min_side) + " m takes up to " + shown(most) +
+                       " squares (more than " + std::to_string(max_clutter_attempts) +
+                       ", the generator's attempts): raise clutter.min_side or lower clutter.occupancy");
 }
 
 void read_clutter(const toml::table& t, const std::string& path, bool relative,
                   std::optional<std::uint64_t> clutter_seed, Environment& env) {
   const toml::node* c = t.get("clutter");
   if (!c) {
-    if (clutter_seed) fail(path, "':SEED' is only for environments with a 'clutter' table");
+    if (clutter_seed) env_fail(path, "':SEED' is only for environments with a 'clutter' table");
     return;
   }
   const toml::table* ct = c->as_table();
-  if (!ct) fail(path, "'clutter' must be a table {seed, occupancy, min_side, max_side, gap}");
+  if (!ct) env_fail(path, "'clutter' must be a table {seed, occupancy, min_side, max_side, gap}");
   ClutterSpec spec = read_clutter_table(*ct, path, relative, relative ? std::min(env.lx, env.ly) : 1.0);
   check_clutter(spec, path, env);
   if (clutter_seed) spec.seed = *clutter_seed;
@@ -238,13 +239,14 @@ void check_start(const std::string& path, const Environment& env) {
   if (!env.start) return;
   const auto [x, y] = *env.start;
   const std::string at = "'start' = (" + shown(x) + ", " + shown(y) + ") m";
-  if (x < 0 || x > env.lx || y < 0 || y > env.ly) fail(path, at + " is outside the map " + map_bounds(env));
-  if (const int k = env.obstacle_at(x, y); k >= 0) fail(path, at + " lies inside obstacles[" + std::to_string(k) + "]");
+  if (x < 0 || x > env.lx || y < 0 || y > env.ly) env_fail(path, at + " is outside the map " + map_bounds(env));
+  if (const int k = env.obstacle_at(x, y); k >= 0)
+    env_fail(path, at + " lies inside obstacles[" + std::to_string(k) + "]");
 }
 
 Environment parse_text(const std::string& text, const std::string& path, double size_x, double size_y,
                        std::optional<std::uint64_t> clutter_seed) {
-  const toml::table t = parse_toml(text, path);
+  const toml::table t = parse_environment_toml(text, path);
   Environment env;
   env.name = fs::path(path).stem().string();
   const bool relative = read_name_and_units(t, path, env);
