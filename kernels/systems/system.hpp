@@ -72,15 +72,16 @@ inline void heading_trig(const Vec3<T>& u, const HeadingSelect<T>& h, T& c, T& s
 //   template <bool AllSmall, ...> static void step2(...);          // two vectors interleaved
 //   to_lane / from_lane (state, carry, coefficients): the labels its lanes
 //   run in, the heading coordinate moved to z (HeadingZ).
-// A run carries the trig of its state afresh at its start and at each
-// segment's, so a carry is a pure function of the run.
+// A run takes the carry of its state afresh at its start and at each
+// segment's start, so a carry is a pure function of the run. The hooks
+// beyond carry are checked where they are used (the lanes, LaneBinding).
 template <class F>
 concept CarriedSystem = requires(const Vec3<double>& u) {
   { F::carry(u) } -> std::same_as<Trig3<double>>;
 };
 
-// The state a run of system F starts from: its initial state, wrapped by a
-// system whose coordinates are angles (F::start), as is.
+// The state a run of system F starts from: its initial state as is, or as
+// F::start makes it (the Arnold flow's coordinates are angles: wrapped).
 template <class F>
 inline Vec3<double> system_start(const Vec3<double>& u) {
   if constexpr (requires { F::start(u); }) return F::start(u);
