@@ -56,6 +56,8 @@ RunSpec run_spec_of(const StoredRow& row) {
       else if (it != row.numeric.end()) v = it->second;
       else throw missing(name);
     }
+    // A foreign or damaged file may hold any value: the spec's ranges apply.
+    if (const std::string e = p.check(v); !e.empty()) throw SpecError("cannot rebuild the run: column " + e);
     p.set(s.params, v);
   }
   const auto env = row.text.find("env");

@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 namespace chaosweep {
 
@@ -10,23 +11,38 @@ namespace {
 
 using Kind = ParamInfo::Kind;
 
+// A double for an integer field, saturating (NaN as 0). check() refuses such
+// values before a run uses them, but set() also takes unchecked ones (a
+// stored row before its check, the hash tests), and converting 1e300 or NaN
+// to an integer is undefined behaviour.
+template <class T>
+T saturating(double v) {
+  constexpr double lo = double(std::numeric_limits<T>::min()), hi = double(std::numeric_limits<T>::max());
+  if (std::isnan(v)) return T(0);
+  if (v <= lo) return std::numeric_limits<T>::min();
+  if (v >= hi) return std::numeric_limits<T>::max();
+  return T(v);
+}
+
 #define CW_REAL(field, lo, hi, unset_ok, help)                                                               \
   ParamInfo {                                                                                                \
 #field, help, Kind::real, lo, hi, unset_ok,                                                              \
         {}, [](const RunParams& p) { return double(p.field); }, [](RunParams & p, double v) { p.field = v; } \
   }
-#define CW_INT(field, lo, hi, help)                                                                              \
-  ParamInfo {                                                                                                    \
-#field, help, Kind::integer, lo, hi, false,                                                                  \
-        {}, [](const RunParams& p) { return double(p.field); }, [](RunParams & p,                                \
-                                                                   double v) { p.field = decltype(p.field)(v); } \
+#define CW_INT(field, lo, hi, help)                                                                                    \
+  ParamInfo {                                                                                                          \
+#field, help, Kind::integer, lo, hi, false,                                                                        \
+        {},                                                                                                            \
+         [](const RunParams& p) { return double(p.field); },                                                           \
+                                                          [](RunParams & p,                                            \
+                                                             double v) { p.field = saturating<decltype(p.field)>(v); } \
   }
 #define CW_CHOICE(field, type, help, ...)                                                                              \
   ParamInfo {                                                                                                          \
 #field, help, Kind::choice, 0, 0, false,                                                                           \
         {__VA_ARGS__ },                                                                                                \
-         [](const RunParams& p) { return double(int(p.field)); },                                                      \
-                                                               [](RunParams & p, double v) { p.field = type(int(v)); } \
+         [](const RunParams& p) { return double(int(p.field)); }, [](RunParams & p,                                    \
+                                                                     double v) { p.field = type(saturating<int>(v)); } \
   }
 
 // A parameter added after result files began to store param_hash (see
@@ -47,7 +63,7 @@ ParamInfo system_param() {
                                "chaotic system driving the Arnold planner family (planner = arnold): the Arnold "
                                "flow, or a flow (kernels/systems/flows/) or map (maps/) with coefficients sys_a..sys_d",
                                Kind::choice, 0, 0, false, names, [](const RunParams& p) { return double(p.system); },
-                               [](RunParams& p, double v) { p.system = int(v); }});
+                               [](RunParams& p, double v) { p.system = saturating<int>(v); }});
 }
 
 // ic_x, ic_y, ic_z: read as the initial state the run takes (system_ic: an

@@ -3,7 +3,9 @@
 // `run` reproducing the stored row.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -172,6 +174,39 @@ TEST(CliRunFrom, BadInputIsNamedAndExits2) {
   r = run_chaosweep("run --from " + dir.file("env.h5") + " --run-id 1");
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_TRUE(has(r.err, "env.h5: run_id 1: ") && has(r.err, "box.toml")) << r.err;
+}
+
+// A stored row is checked against the spec's ranges before it is rebuilt:
+// a damaged or foreign file's value is refused naming its column, never
+// converted (1e300 or NaN into an integer field is undefined behaviour).
+TEST(CliRunFrom, AStoredValueOutOfItsRangeIsRefusedNamingTheColumn) {
+  TempDir dir;
+  write_rows(dir.file("odd.h5"), odd_rows());
+  const StoredRow good = stored_row(read_all_columns(dir.file("odd.h5")), 2);
+  EXPECT_EQ(double(run_spec_of(good).params.ds_index), good.numeric.at("ds_index"));
+  struct Case {
+    const char* column;
+    double value;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"ds_index", 1e300, "column ds_index = 1e+300 is out of range: must be "},
+      {"ds_index", 2.5, "column ds_index = 2.5 is out of range: must be "},
+      {"ds_index", std::nan(""), "column ds_index = nan is out of range: must be "},
+      {"seed", -1, "column seed = -1 is out of range: must be "},
+      {"sr", -std::numeric_limits<double>::infinity(), "column sr = -inf is out of range: must be "},
+  };
+  for (const Case& c : cases) {
+    StoredRow bad = good;
+    ASSERT_TRUE(bad.numeric.count(c.column)) << c.column;
+    bad.numeric[c.column] = c.value;
+    try {
+      (void)run_spec_of(bad);
+      ADD_FAILURE() << c.column << " = " << c.value << " was accepted";
+    } catch (const SpecError& e) {
+      EXPECT_TRUE(has(e.what(), c.message)) << e.what();
+    }
+  }
 }
 
 // A tuple as `table best` prints it, typed into `run`, gives the stored row:
