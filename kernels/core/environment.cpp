@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "kernels/core/obstacle_index.hpp"
 
@@ -149,35 +150,52 @@ ObstacleHit keep_out_of_obstacles(const Environment& env, double fo, bool mirror
   return hit;
 }
 
-std::vector<unsigned char> cells_clear_of_obstacles(const Environment& env, double fo, int nx, int ny, double cell) {
-  std::vector<unsigned char> clear(std::size_t(nx) * std::size_t(ny), 1);
-  const double margin = 1e-6 * cell + 1e-9 * std::max(env.lx, env.ly);
-  // Each cell's extent, widened by the margin; both ends grow with the index,
-  // so the cells an obstacle (grown by fo) meets are a range found by search.
-  const auto n_x = static_cast<std::size_t>(nx), n_y = static_cast<std::size_t>(ny);
-  std::vector<double> x0(n_x), x1(n_x), y0(n_y), y1(n_y);
-  for (int i = 0; i < nx; ++i) {
-    x0[std::size_t(i)] = i * cell - margin;
-    x1[std::size_t(i)] = (i + 1 == nx ? std::max((i + 1) * cell, env.lx) : (i + 1) * cell) + margin;
-  }
-  for (int j = 0; j < ny; ++j) {
-    y0[std::size_t(j)] = j * cell - margin;
-    y1[std::size_t(j)] = (j + 1 == ny ? std::max((j + 1) * cell, env.ly) : (j + 1) * cell) + margin;
-  }
-  // The cells [lo, hi) with hi_end > a and lo_end < b.
-  const auto range = [](const std::vector<double>& lo_end, const std::vector<double>& hi_end, double a, double b) {
-    const auto lo = std::upper_bound(hi_end.begin(), hi_end.end(), a) - hi_end.begin();
-    const auto hi = std::lower_bound(lo_end.begin(), lo_end.end(), b) - lo_end.begin();
-    return std::pair{std::size_t(lo), std::size_t(std::max(hi, lo))};
+ObstacleBox obstacle_box(const Environment& env, double fo, double x, double y, const Rect& band, double reach,
+                         bool with_near) {
+  ObstacleBox out;
+  const ObstacleIndex* ix = env.usable_index();
+  // A query the index answers from its buckets, not by a scan of every obstacle.
+  const double s = fo + slack(std::fabs(x) + reach, std::fabs(y) + reach, fo);
+  if (ix) reach = std::max(0.0, std::min(reach, 0.5 * ix->bucket_query_side() - s));
+  Rect c{std::max(band.x0, x - reach), std::max(band.y0, y - reach), std::min(band.x1, x + reach),
+         std::min(band.y1, y + reach)};
+  if (!(c.x0 <= x && x <= c.x1 && c.y0 <= y && y <= c.y1)) return out;  // outside the band, or NaN
+  // The closed box c meets the open rectangle g.
+  const auto meets = [&c](const Rect& g) { return c.x1 > g.x0 && c.x0 < g.x1 && c.y1 > g.y0 && c.y0 < g.y1; };
+  // Every obstacle whose grown rectangle may meet c (as it is now: c only shrinks), in index order.
+  const auto each = [&](auto&& f) {
+    if (ix) ix->find(c.x0 - s, c.y0 - s, c.x1 + s, c.y1 + s, [&](std::size_t k) { return f(k), false; });
+    else
+      for (std::size_t k = 0; k < env.obstacles.size(); ++k) f(k);
   };
-  for (const Rect& r : env.obstacles) {
-    const auto [i0, i1] = range(x0, x1, r.x0 - fo, r.x1 + fo);
-    const auto [j0, j1] = range(y0, y1, r.y0 - fo, r.y1 + fo);
-    for (std::size_t j = j0; j < j1; ++j)
-      std::fill(clear.begin() + std::ptrdiff_t(j * std::size_t(nx) + i0),
-                clear.begin() + std::ptrdiff_t(j * std::size_t(nx) + i1), 0);
+  std::size_t near = env.obstacles.size();
+  if (with_near) {
+    double best = std::numeric_limits<double>::infinity();
+    each([&](std::size_t k) {
+      const Rect g = grown_by(env.obstacles[k], fo);
+      if (!meets(g)) return;
+      const double dx = std::max({g.x0 - x, 0.0, x - g.x1}), dy = std::max({g.y0 - y, 0.0, y - g.y1});
+      if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, near = k;
+    });
   }
-  return clear;
+  bool ok = true;
+  each([&](std::size_t k) {
+    if (k == near || !ok) return;
+    const Rect g = grown_by(env.obstacles[k], fo);
+    if (!meets(g)) return;
+    // The four ways to cut g off (each leaves c disjoint from g) that keep (x, y).
+    const Rect cuts[] = {
+        {c.x0, c.y0, g.x0, c.y1}, {g.x1, c.y0, c.x1, c.y1}, {c.x0, c.y0, c.x1, g.y0}, {c.x0, g.y1, c.x1, c.y1}};
+    double most = -1;
+    for (const Rect& r : cuts)
+      if (r.x0 <= x && x <= r.x1 && r.y0 <= y && y <= r.y1 && (r.x1 - r.x0) * (r.y1 - r.y0) > most)
+        most = (r.x1 - r.x0) * (r.y1 - r.y0), c = r;
+    ok = most >= 0;
+  });
+  if (!ok) return out;
+  out.box = c;
+  if (near < env.obstacles.size()) out.near = grown_by(env.obstacles[near], fo);
+  return out;
 }
 
 }  // namespace chaosweep

@@ -2,6 +2,7 @@
 // The workspace a run happens in: a rectangle [0,lx] x [0,ly] with static
 // axis-aligned rectangular obstacles (docs/spec.md §1). Pure data; loading from files
 // is the engine's job.
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +18,10 @@ struct Rect {
   // The closed rectangle: its edges too.
   bool contains_closed(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
 };
+
+// A rectangle holding no point, closed or open.
+inline constexpr Rect no_rect{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                              -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
 
 struct Environment {
   std::string name = "empty";
@@ -60,10 +65,22 @@ struct ObstacleHit {
 // it about the face (Eq. 7 applied at the obstacle: X = -X + 2 (M_left - fo)).
 ObstacleHit keep_out_of_obstacles(const Environment& env, double fo, bool mirror, double& x, double& y);
 
-// 1 for each cell of an nx x ny grid of side `cell` (row-major; the last
-// row and column reach the map's edge) in which no position lies within fo
-// of an obstacle, so that Eq. 8 moves none: the cell, widened by a margin
-// for the rounding of a position's cell index, meets no obstacle grown by fo.
-std::vector<unsigned char> cells_clear_of_obstacles(const Environment& env, double fo, int nx, int ny, double cell);
+// Where the lane integrators may apply Eq. 8 themselves (kernels/lanes): a
+// closed box around (x, y) inside `band`, at most `reach` from it along each
+// axis, that meets the grown rectangle (the obstacle grown by fo, open) of
+// no obstacle but `near`: the one nearest to (x, y) when `with_near`, else
+// none. keep_out_of_obstacles(mirror = false) moves a point P of the box
+// only when near's grown rectangle holds it, once, to that rectangle's face
+// of least penetration (the obstacles before near in the pass do not hold
+// P, those after it and the second round do not hold the face point when it
+// is in the box too: the rectangle is open). The box is empty (x0 > x1) when
+// (x, y) lies in another grown rectangle or outside the band; near is empty
+// when there is none. Other obstacles are cut off the box on the side that
+// keeps the most area.
+struct ObstacleBox {
+  Rect box = no_rect, near = no_rect;
+};
+ObstacleBox obstacle_box(const Environment& env, double fo, double x, double y, const Rect& band, double reach,
+                         bool with_near);
 
 }  // namespace chaosweep

@@ -22,6 +22,9 @@ class ObstacleIndex {
   ObstacleIndex(const std::vector<Rect>& obstacles, double reach);
 
   std::size_t size() const { return count_; }  // obstacles indexed
+  // The widest side of a query box that find() answers from its buckets
+  // (a box spanning more buckets scans every obstacle).
+  double bucket_query_side() const { return double(max_span - 1) * 0.95 / std::max(inv_w_, inv_h_); }
 
   // Calls f(k) for the obstacles k that may meet [x0, x1] x [y0, y1], in
   // increasing k, until f returns true; returns whether it did.

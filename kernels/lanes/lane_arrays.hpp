@@ -28,7 +28,7 @@ struct LaneArrays {
   alignas(64) double dX[max_lanes], dY[max_lanes];
 
   // Fast path: the integrator also moves the robot (Eq. 7 or the fold; Eq. 8
-  // only where it moves nothing, see `clear`) and advances the clock when the
+  // within the lane's obstacle box, see `box_x0`) and advances the clock when the
   // step stays in its cell and triggers no end or segment check: the same
   // operations the scalar PlannerRun would do. A step into a neighbouring cell (fast = 2) is
   // applied too, and its cell marked (see `cells`). Any other step sets its
@@ -68,34 +68,17 @@ struct LaneArrays {
   std::uint32_t* visits[max_lanes];
   std::int64_t* turns[max_lanes];
   int last_dir[max_lanes];
-  // Maps with obstacles: the cells Eq. 8 leaves alone (cells_clear_of_obstacles;
-  // nullptr: no obstacles). A step is applied only when it ends in such a
-  // cell; the lane keeps whether its cell and its four neighbours are
-  // (lane_clearance, kept up to date whenever its cell changes).
-  const unsigned char* clear[max_lanes];
-  alignas(64) double clear_here[max_lanes], clear_left[max_lanes], clear_right[max_lanes];
-  alignas(64) double clear_down[max_lanes], clear_up[max_lanes];
+  // Maps with obstacles (obstacles[l]): a box around the robot in which Eq. 8
+  // moves a position at most once, onto the face of least penetration of
+  // `near` (the nearest obstacle grown by fo; an empty rectangle: none), see
+  // obstacle_box. A step is applied only when it ends in the box, pushed or
+  // not; the sink gives the lane a new box when its robot is outside it.
+  alignas(64) double box_x0[max_lanes], box_x1[max_lanes], box_y0[max_lanes], box_y1[max_lanes];
+  alignas(64) double near_x0[max_lanes], near_x1[max_lanes], near_y0[max_lanes], near_y1[max_lanes];
+  bool obstacles[max_lanes];
   unsigned flagged = 0;  // out: bit l set when the sink must handle lane l's step
   unsigned covered = 0;  // out: bit l set when lane l's applied step reached dc (the sink ends the run)
 };
-
-// Sets lane l's clear_* for its cell (cell_i, cell_j). A template (V: the
-// kernel's vector type, or double) so that each kernel file's copy is its own.
-template <class V>
-inline void lane_clearance(LaneArrays& a, int l) {
-  const unsigned char* c = a.clear[l];
-  if (c == nullptr) {
-    a.clear_here[l] = a.clear_left[l] = a.clear_right[l] = a.clear_down[l] = a.clear_up[l] = 1.0;
-    return;
-  }
-  const int i = int(a.cell_i[l]), j = int(a.cell_j[l]), nx = int(a.max_i[l]) + 1, ny = int(a.max_j[l]) + 1;
-  auto at = [&](int ii, int jj) { return ii >= 0 && ii < nx && jj >= 0 && jj < ny && c[jj * nx + ii] ? 1.0 : 0.0; };
-  a.clear_here[l] = at(i, j);
-  a.clear_left[l] = at(i - 1, j);
-  a.clear_right[l] = at(i + 1, j);
-  a.clear_down[l] = at(i, j - 1);
-  a.clear_up[l] = at(i, j + 1);
-}
 
 // Takes the steps the integrator leaves to it (flagged, covered: boundaries,
 // grid, decisions, ends, refill) after any step that leaves one, and reports

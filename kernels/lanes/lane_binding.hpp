@@ -49,9 +49,11 @@ class LaneBinding {
   // Lane l's cell and the window's distinct count, from the run.
   void lane_cell(LaneArrays& a, int l) const;
 
+  // Lane l's obstacle box (LaneArrays::box_x0): the band on an open map,
+  // else obstacle_box around the robot.
+  void lane_box(LaneArrays& a, int l) const;
+
   PlannerRun run_;
-  // The cells Eq. 8 leaves alone (made at the first write_lane).
-  std::vector<unsigned char> clear_;
 };
 
 }  // namespace chaosweep

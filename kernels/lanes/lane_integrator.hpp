@@ -36,17 +36,20 @@ struct FastPathBits {
 template <class V>
 struct FastPathInputs {
   V lo_x, hi_x, lo_y, hi_y, fh, inv, mi, mj, budget, stuck_time, niter;
-  decltype(V() < V()) fast_ok, fast_cross;  // fast >= 1, fast == 2
+  decltype(V() < V()) fast_ok, fast_cross;                               // fast >= 1, fast == 2
+  V box_x0, box_x1, box_y0, box_y1, near_x0, near_x1, near_y0, near_y1;  // the general form's
 };
 
 template <class V>
 inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
   const V fast = lane_load<V>(a.fast + o);
-  return {lane_load<V>(a.lo_x + o),       lane_load<V>(a.hi_x + o),  lane_load<V>(a.lo_y + o),
-          lane_load<V>(a.hi_y + o),       lane_load<V>(a.fh + o),    lane_load<V>(a.inv_cell + o),
-          lane_load<V>(a.max_i + o),      lane_load<V>(a.max_j + o), lane_load<V>(a.budget + o),
-          lane_load<V>(a.stuck_time + o), lane_load<V>(a.niter + o), fast >= lane::splat<V>(1.0),
-          fast == lane::splat<V>(2.0)};
+  return {lane_load<V>(a.lo_x + o),       lane_load<V>(a.hi_x + o),    lane_load<V>(a.lo_y + o),
+          lane_load<V>(a.hi_y + o),       lane_load<V>(a.fh + o),      lane_load<V>(a.inv_cell + o),
+          lane_load<V>(a.max_i + o),      lane_load<V>(a.max_j + o),   lane_load<V>(a.budget + o),
+          lane_load<V>(a.stuck_time + o), lane_load<V>(a.niter + o),   fast >= lane::splat<V>(1.0),
+          fast == lane::splat<V>(2.0),    lane_load<V>(a.box_x0 + o),  lane_load<V>(a.box_x1 + o),
+          lane_load<V>(a.box_y0 + o),     lane_load<V>(a.box_y1 + o),  lane_load<V>(a.near_x0 + o),
+          lane_load<V>(a.near_x1 + o),    lane_load<V>(a.near_y0 + o), lane_load<V>(a.near_y1 + o)};
 }
 
 // The step's common case, vectorised (see LaneArrays). Mirrors
@@ -80,6 +83,32 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
     X1 = triangle_fold(lane::select(is_fold, UX1, X1), lo_x, hi_x);
     Y1 = triangle_fold(lane::select(is_fold, UY1, Y1), lo_y, hi_y);
   }
+  // The band (general form: the obstacle box) holds the step's end.
+  const auto inside = [&] {
+    if constexpr (!General) {
+      return (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
+    } else {
+      // Eq. 8 (keep_out_of_obstacles) for a step that ends in the lane's
+      // obstacle box: a position in near's open rectangle goes to its face of
+      // least penetration, in move_to_face's order (left, right, bottom, top);
+      // applied only when that face point is in the box too (obstacle_box).
+      const auto in_box = [&c](V x, V y) {
+        return (x >= c.box_x0) & (x <= c.box_x1) & (y >= c.box_y0) & (y <= c.box_y1);
+      };
+      const auto ends_in = in_box(X1, Y1);
+      const auto pushed = (X1 > c.near_x0) & (X1 < c.near_x1) & (Y1 > c.near_y0) & (Y1 < c.near_y1);
+      const V to_left = X1 - c.near_x0, to_right = c.near_x1 - X1, to_bottom = Y1 - c.near_y0, to_top = c.near_y1 - Y1;
+      const V m_x = lane::select(to_right < to_left, to_right, to_left);
+      const V m_y = lane::select(to_top < to_bottom, to_top, to_bottom);
+      const V m = lane::select(m_y < m_x, m_y, m_x);
+      const auto left = to_left == m, right = to_right == m, on_x = left | right;
+      const V PX = lane::select(left, c.near_x0, lane::select(right, c.near_x1, X1));
+      const V PY = lane::select(on_x, Y1, lane::select(to_bottom == m, c.near_y0, c.near_y1));
+      X1 = lane::select(pushed, PX, X1);
+      Y1 = lane::select(pushed, PY, Y1);
+      return ends_in & in_box(X1, Y1);
+    }
+  }();
   const V t1 = t + c.fh;
   // cell_x's clamp from below is a no-op for the steps applied: they end
   // inside the band, X1 >= lo_x >= 0 (fo, or 0 for the fold; a -0 index
@@ -89,7 +118,6 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   cj = lane::select(cj < c.mj, cj, c.mj);
   const V seg = lane_load<V>(a.seg_step + o) + passes;
   const V cell_i = lane_load<V>(a.cell_i + o), cell_j = lane_load<V>(a.cell_j + o);
-  const auto inside = (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
   // One NaN test for the state: a NaN coordinate makes the sum NaN (so does
   // inf - inf, which only sends that step to the sink, the reference path).
   const V sum = s.u.x + s.u.y + s.u.z;
@@ -100,16 +128,8 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   // exactly (a corner or a longer jump is left to the sink's supercover).
   const V di = ci - cell_i, dj = cj - cell_j;
   const V d2 = lane::fma(di, di, dj * dj);
-  auto quiet = ok & (d2 == lane::splat<V>(0.0));
-  auto entered = ok & c.fast_cross & (d2 == one);
-  if constexpr (General) {  // the step must end where Eq. 8 moves nothing
-    quiet = quiet & (lane_load<V>(a.clear_here + o) == one);
-    const V target = lane::select(
-        di == one, lane_load<V>(a.clear_right + o),
-        lane::select(di == -one, lane_load<V>(a.clear_left + o),
-                     lane::select(dj == one, lane_load<V>(a.clear_up + o), lane_load<V>(a.clear_down + o))));
-    entered = entered & (target == one);
-  }
+  const auto quiet = ok & (d2 == lane::splat<V>(0.0));
+  const auto entered = ok & c.fast_cross & (d2 == one);
   const auto applied = quiet | entered;
   lane_store(a.X + o, lane::select(applied, X1, X));
   lane_store(a.Y + o, lane::select(applied, Y1, Y));
@@ -136,14 +156,13 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
   unsigned covered = 0;
   for (; entered != 0; entered &= entered - 1) {
     const int l = __builtin_ctz(entered);
-    if (a.clear[l] != nullptr) lane_clearance<V>(a, l);
     const long k = long(a.cell_j[l]) * (long(a.max_i[l]) + 1) + long(a.cell_i[l]);
     unsigned char& c = a.cells[l][k];
     if (unsigned* stamp = a.stamp[l]) {
       const long left = a.cell_k[l];
       const unsigned w = a.window[l];
       if (a.cells[l][left] != 2 && stamp[left] != w) stamp[left] = w, ++a.window_distinct[l];  // 2: blocked
-      if (stamp[k] != w) stamp[k] = w, ++a.window_distinct[l];
+      if (c != 2 && stamp[k] != w) stamp[k] = w, ++a.window_distinct[l];  // a push can end in a blocked cell
     }
     // A visit and a turn, as CoverageGrid::enter counts them: the cell left
     // is the one marked last, an edge away (east, north, west, south).
@@ -153,7 +172,7 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
     if (a.last_dir[l] >= 0) ++a.turns[l][(dir - a.last_dir[l]) & 3];
     a.last_dir[l] = dir;
     a.cell_k[l] = k;
-    if (c != 0) continue;  // visited already (a cell clear of obstacles is not blocked)
+    if (c != 0) continue;  // visited already, or blocked
     c = 1;
     if (a.region[l] != nullptr) ++a.region_visited[l][a.region[l][k]];
     a.t_last_new[l] = a.t[l];
@@ -314,7 +333,7 @@ template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
     bool general = false;
-    for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.clear[l] != nullptr;
+    for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.obstacles[l];
     StepsDone d;
     with_system(a.system, [&](auto tag) {
       using F = typename decltype(tag)::type;

@@ -93,14 +93,14 @@ Environment many_squares(int n) {
 }
 
 // The geometry a run sets up before its first step: free area, blocked
-// cells, cells clear of Eq. 8.
+// cells, the first obstacle box of a lane (from a map's corner).
 void BM_obstacle_setup(benchmark::State& state) {
   const Environment env = many_squares(int(state.range(0)));
   for (auto _ : state) {
     benchmark::DoNotOptimize(env.obstacle_area());
     const CoverageGrid grid(env, 1.0);
     benchmark::DoNotOptimize(grid.free_cells());
-    benchmark::DoNotOptimize(cells_clear_of_obstacles(env, 0.5, grid.nx(), grid.ny(), 1.0).data());
+    benchmark::DoNotOptimize(obstacle_box(env, 0.5, 0.5, 0.5, {0.5, 0.5, env.lx - 0.5, env.ly - 0.5}, 16, true).box.x1);
   }
 }
 BENCHMARK(BM_obstacle_setup)->Arg(5)->Arg(1000)->Arg(9000)->Unit(benchmark::kMillisecond);
@@ -237,7 +237,7 @@ void BM_lane_kernel(benchmark::State& state) {
     a.cell_i[l] = a.cell_j[l] = 0;
     a.fast[l] = 1;
     a.fold[l] = a.UX[l] = a.UY[l] = 0;
-    a.clear[l] = nullptr;
+    a.obstacles[l] = false;
   }
   CountingSink sink;
   for (auto _ : state) {

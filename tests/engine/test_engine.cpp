@@ -606,7 +606,8 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
 TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries (also with steps longer than the
   // map, which the lanes fold in full), obstacles (with and without map
-  // zoning, under both boundaries, every obstacle response), the scalar-only paths
+  // zoning, under both boundaries, every obstacle response; a map of many,
+  // indexed; obstacles closer than 2 fo, whose margins overlap), the scalar-only paths
   // (step doubling, Logistic, Chebyshev), a run outside small-shift mode (dt = 0.5),
   // an invalid run and the flows and maps of kernels/systems/ (each system's
   // runs in lanes of their own), mixed in one batch.
@@ -638,6 +639,9 @@ case = [
   { label = "all-cells", coverage_cells = "all", env = "five_squares", start = [4.8, 1.6] },
   { label = "mz-all-cells", map_zoning = 1, c = 0.8, coverage_cells = "all", env = "one_square", start = [1, 8] },
   { label = "mz-transit-distance", map_zoning = 1, c = 0.8, transit_time = "distance", env = "five_squares", start = [4.8, 1.6] },
+  { label = "clutter", env = "clutter" },
+  { label = "mz-clutter", map_zoning = 1, c = 0.8, env = "clutter", start = [8, 8] },
+  { label = "packed-obstacles", fo = 0.8, env = "five_squares", start = [8, 1] },
   { label = "lorenz", system = "lorenz", dt = 0.001, f = 100 },
   { label = "lorenz-fold-y", system = "lorenz", boundary = "fold", dt = 0.001, f = 100, ds_index = 2 },
   { label = "chen-obstacles", system = "chen", dt = 0.001, f = 100, env = "five_squares", start = [4.8, 1.6] },

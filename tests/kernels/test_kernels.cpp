@@ -377,43 +377,6 @@ TEST(RobotMotion, ObstacleResponsesPushMirrorOrBounceAtTheFaceOfLeastPenetration
 
 // -------------------------------------------------------------- coverage
 
-TEST(Obstacles, NoPositionInACellClearOfObstaclesIsPushed) {
-  // Table 1's five squares on a 50 m map, cells of 1 m and of 4 m (a clipped last row), fo 0.5 and 2.
-  const Environment env =
-      square_map(50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}});
-  std::mt19937_64 rng(17);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  for (const double cell : {1.0, 4.0})
-    for (const double fo : {0.5, 2.0}) {
-      const CoverageGrid grid(env, cell);
-      const auto clear = cells_clear_of_obstacles(env, fo, grid.nx(), grid.ny(), cell);
-      int n_clear = 0;
-      for (int j = 0; j < grid.ny(); ++j)
-        for (int i = 0; i < grid.nx(); ++i) {
-          const bool is_clear = clear[std::size_t(j) * grid.nx() + i] != 0;
-          n_clear += is_clear;
-          if (grid.at(i, j) == CoverageGrid::blocked) {
-            ASSERT_FALSE(is_clear) << i << "," << j;
-          }
-          if (!is_clear) continue;
-          // Positions whose cell index is (i, j), corners included.
-          for (int k = 0; k < 200; ++k) {
-            double x = std::min((i + (k == 0 ? 0.0 : u01(rng))) * cell, env.lx);
-            double y = std::min((j + (k == 1 ? 0.0 : u01(rng))) * cell, env.ly);
-            if (grid.cell_x(x) != i || grid.cell_y(y) != j) continue;
-            ASSERT_FALSE(push_out_of_obstacles(env, fo, x, y)) << "cell " << i << "," << j << " at " << x << "," << y;
-          }
-        }
-      EXPECT_GT(n_clear, 0);
-      EXPECT_LT(n_clear, grid.free_cells());  // the free cells next to a square are not clear
-      if (cell == 1.0) {
-        EXPECT_TRUE(clear[0]);              // the corner, 5 m from the nearest square
-        EXPECT_FALSE(clear[10 * 50 + 10]);  // inside a square
-        EXPECT_FALSE(clear[10 * 50 + 22]);  // 0.5 m and less from its face x = 22
-      }
-    }
-}
-
 TEST(CoverageGrid, UsesCeilCellsWithTheLastRowClipped) {
   const CoverageGrid g(square_map(50.0), 4.0);
   EXPECT_EQ(g.nx(), 13);

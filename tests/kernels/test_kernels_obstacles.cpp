@@ -1,5 +1,5 @@
 // Obstacle geometry for maps of many obstacles (issue 18, item 5): the
-// union area by a sweep, blocked and clear cells by ranges, and the bucket
+// union area by a sweep, blocked cells by ranges, and the bucket
 // index behind obstacle_at, near_obstacle and Eq. 8's push-out give exactly
 // what the former scans of every obstacle gave (those scans are kept here as
 // the reference), and the clutter generator's buckets change no map.
@@ -64,24 +64,6 @@ bool push_out_by_scan(const Environment& env, double fo, double& x, double& y) {
     if (!again) break;
   }
   return moved;
-}
-
-// The former cells_clear_of_obstacles: every cell against every obstacle.
-std::vector<unsigned char> clear_by_scan(const Environment& env, double fo, int nx, int ny, double cell) {
-  std::vector<unsigned char> clear(std::size_t(nx) * std::size_t(ny), 1);
-  const double margin = 1e-6 * cell + 1e-9 * std::max(env.lx, env.ly);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const double x0 = i * cell - margin, y0 = j * cell - margin;
-      const double x1 = (i + 1 == nx ? std::max((i + 1) * cell, env.lx) : (i + 1) * cell) + margin;
-      const double y1 = (j + 1 == ny ? std::max((j + 1) * cell, env.ly) : (j + 1) * cell) + margin;
-      for (const Rect& r : env.obstacles)
-        if (x1 > r.x0 - fo && x0 < r.x1 + fo && y1 > r.y0 - fo && y0 < r.y1 + fo) {
-          clear[std::size_t(j) * nx + i] = 0;
-          break;
-        }
-    }
-  return clear;
 }
 
 // The former clutter generator: each attempt against every square placed.
@@ -173,12 +155,8 @@ TEST(ObstacleGeometry, IndexedQueriesAnswerAsAScanOfEveryObstacle) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     EXPECT_EQ(indexed.obstacle_at(nan, 1), -1);
     EXPECT_FALSE(indexed.near_obstacle(1, nan, 0.5));
-    // Cells: blocked by their centres, clear of obstacles grown by fo.
+    // Cells: blocked by their centres.
     for (double cell : {0.37, 1.0, 2.5}) {
-      const int n = int(std::ceil(30 / cell - 1e-9));
-      for (double fo : {0.0, 0.5, 2.0})
-        EXPECT_EQ(cells_clear_of_obstacles(indexed, fo, n, n, cell), clear_by_scan(scanned, fo, n, n, cell))
-            << "cell " << cell << " fo " << fo;
       const CoverageGrid grid(indexed, cell);
       int free = 0;
       for (int j = 0; j < grid.ny(); ++j)
@@ -192,6 +170,85 @@ TEST(ObstacleGeometry, IndexedQueriesAnswerAsAScanOfEveryObstacle) {
       EXPECT_EQ(grid.free_cells(), free);
     }
   }
+}
+
+// The lanes apply Eq. 8 themselves inside a lane's obstacle box
+// (kernels/lanes): for every point P of the box, keep_out_of_obstacles must
+// move P only when the box's near obstacle (grown by fo) holds it, and then
+// once, onto that rectangle's face of least penetration, whenever that face
+// point is in the box too. Checked on Table 1's five squares and on maps of
+// overlapping obstacles scanned and indexed (400: the index's queries), at
+// points anywhere in the box, on its edges and corners, on the faces and
+// just inside them.
+TEST(ObstacleGeometry, InAnObstacleBoxEq8IsAtMostOnePushOntoTheNearObstacle) {
+  Environment five = test::square_map(
+      50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}});
+  Environment many = random_map(5, 400, 30);
+  many.index_obstacles();
+  ASSERT_NE(many.usable_index(), nullptr);
+  const Environment maps[] = {five, random_map(6, 25, 30), many};
+  std::uint64_t s = 41;
+  int boxes = 0, empty = 0, pushes = 0, still = 0;
+  for (const Environment& env : maps)
+    for (const double fo : {0.0, 0.5, 2.0})
+      for (const bool with_near : {true, false}) {
+        const Rect band{fo, fo, env.lx - fo, env.ly - fo};
+        for (int k = 0; k < 150; ++k) {
+          // A robot where the planner leaves one: anywhere in the band, pushed out (most of them).
+          double x = band.x0 + (band.x1 - band.x0) * uniform01(s), y = band.y0 + (band.y1 - band.y0) * uniform01(s);
+          if (k % 5) keep_out_of_obstacles(env, fo, false, x, y);
+          const double reach = 1 + 10 * uniform01(s);
+          const ObstacleBox b = obstacle_box(env, fo, x, y, band, reach, with_near);
+          if (b.box.x0 > b.box.x1) {
+            ++empty;
+            continue;
+          }
+          ++boxes;
+          ASSERT_TRUE(b.box.contains_closed(x, y)) << x << ", " << y;
+          ASSERT_TRUE(b.box.x0 >= band.x0 && b.box.x1 <= band.x1 && b.box.y0 >= band.y0 && b.box.y1 <= band.y1);
+          ASSERT_TRUE(b.box.x0 >= x - reach && b.box.x1 <= x + reach && b.box.y0 >= y - reach && b.box.y1 <= y + reach);
+          if (!with_near) ASSERT_TRUE(b.near.x0 > b.near.x1);
+          const Rect& g = b.near;
+          const auto in_box_x = [&](double u) { return std::clamp(u, b.box.x0, b.box.x1); };
+          const auto in_box_y = [&](double u) { return std::clamp(u, b.box.y0, b.box.y1); };
+          for (int q = 0; q < 60; ++q) {
+            double px = b.box.x0 + (b.box.x1 - b.box.x0) * uniform01(s);
+            double py = b.box.y0 + (b.box.y1 - b.box.y0) * uniform01(s);
+            if (q % 6 == 1) px = q % 12 < 6 ? b.box.x0 : b.box.x1;  // the box's edges and corners
+            if (q % 6 == 2) py = q % 12 < 6 ? b.box.y0 : b.box.y1;
+            if (g.x0 <= g.x1 && q % 6 >= 3) {  // on near's faces, and just inside them
+              const double fx = q % 12 < 6 ? g.x0 : g.x1, fy = q % 12 < 6 ? g.y0 : g.y1;
+              const double cx = 0.5 * (g.x0 + g.x1), cy = 0.5 * (g.y0 + g.y1);
+              if (q % 6 == 3) px = in_box_x(fx);
+              if (q % 6 == 4) py = in_box_y(fy);
+              if (q % 6 == 5) px = in_box_x(std::nextafter(fx, cx)), py = in_box_y(std::nextafter(fy, cy));
+            }
+            double qx = px, qy = py;
+            const ObstacleHit hit = keep_out_of_obstacles(env, fo, false, qx, qy);
+            if (!g.contains(px, py)) {
+              ASSERT_FALSE(hit.moved) << px << ", " << py << " fo " << fo;
+              ++still;
+              continue;
+            }
+            // move_to_face onto near's face of least penetration.
+            const double to_left = px - g.x0, to_right = g.x1 - px, to_bottom = py - g.y0, to_top = g.y1 - py;
+            const double m = std::min({to_left, to_right, to_bottom, to_top});
+            double ex = px, ey = py;
+            if (m == to_left) ex = g.x0;
+            else if (m == to_right) ex = g.x1;
+            else if (m == to_bottom) ey = g.y0;
+            else ey = g.y1;
+            if (!b.box.contains_closed(ex, ey)) continue;  // the lanes leave it to the planner
+            ASSERT_TRUE(same_bits(qx, ex) && same_bits(qy, ey)) << px << ", " << py << " fo " << fo;
+            ASSERT_EQ(hit.x_faces + hit.y_faces, 1);
+            ++pushes;
+          }
+        }
+      }
+  EXPECT_GT(boxes, 1000);
+  EXPECT_GT(pushes, 1000);
+  EXPECT_GT(still, 10000);
+  EXPECT_GT(empty, 0);  // a robot inside a grown rectangle that is not the nearest, or between two of them
 }
 
 TEST(ObstacleGeometry, ARunOnAnIndexedMapEqualsTheRunOnTheSameMapScanned) {
