@@ -69,11 +69,11 @@ ObstacleHit keep_out_of_obstacles(const Environment& env, double fo, bool mirror
 // closed box around (x, y) inside `band`, at most `reach` from it along each
 // axis, that meets the grown rectangle (the obstacle grown by fo, open) of
 // no obstacle but `near`: the one nearest to (x, y) when `with_near`, else
-// none. keep_out_of_obstacles(mirror = false) moves a point P of the box
-// only when near's grown rectangle holds it, once, to that rectangle's face
+// none. keep_out_of_obstacles moves a point P of the box only when near's
+// grown rectangle holds it, once, onto (mirror: about) that rectangle's face
 // of least penetration (the obstacles before near in the pass do not hold
-// P, those after it and the second round do not hold the face point when it
-// is in the box too: the rectangle is open). The box is empty (x0 > x1) when
+// P; those after it and the second round do not hold the point it reaches
+// when that is in the box too: the rectangle is open). The box is empty (x0 > x1) when
 // (x, y) lies in another grown rectangle or outside the band; near is empty
 // when there is none. Other obstacles are cut off the box on the side that
 // keeps the most area.

@@ -70,11 +70,13 @@ struct LaneArrays {
   int last_dir[max_lanes];
   // Maps with obstacles (obstacles[l]): a box around the robot in which Eq. 8
   // moves a position at most once, onto the face of least penetration of
-  // `near` (the nearest obstacle grown by fo; an empty rectangle: none), see
-  // obstacle_box. A step is applied only when it ends in the box, pushed or
-  // not; the sink gives the lane a new box when its robot is outside it.
+  // `near` (the nearest obstacle grown by fo; an empty rectangle: none), or
+  // about it (near_mirror = 1: obstacle_response = "mirror"), see
+  // obstacle_box. A step is applied only when it ends in the box, moved or
+  // not; the sink gives the lane a new box after every step it takes.
   alignas(64) double box_x0[max_lanes], box_x1[max_lanes], box_y0[max_lanes], box_y1[max_lanes];
   alignas(64) double near_x0[max_lanes], near_x1[max_lanes], near_y0[max_lanes], near_y1[max_lanes];
+  alignas(64) double near_mirror[max_lanes];
   bool obstacles[max_lanes];
   unsigned flagged = 0;  // out: bit l set when the sink must handle lane l's step
   unsigned covered = 0;  // out: bit l set when lane l's applied step reached dc (the sink ends the run)

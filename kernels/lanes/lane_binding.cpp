@@ -132,10 +132,11 @@ void LaneBinding::lane_box(LaneArrays& a, int l) const {
     // box or not: a robot pushed onto the face of an obstacle cut off the
     // box stays on the box's edge, and its steps into that obstacle would
     // all be the sink's (two thirds of the sink's steps on Table 1's five
-    // squares). The fast path pushes only as Eq. 8 as printed does on the
-    // mirror boundary (onto the face; the fold also moves the unfolded
-    // position, the mirror response reflects): else no obstacle is near.
-    const bool pushes = run_.p_.boundary == Boundary::mirror && run_.p_.obstacle_response == ObstacleResponse::push;
+    // squares). The fast path moves a position onto or about the face only
+    // on the mirror boundary (the fold also moves the unfolded position) and
+    // as the push and mirror responses do (a bounce also reverses the
+    // motion): else no obstacle is near.
+    const bool pushes = run_.p_.boundary == Boundary::mirror && run_.p_.obstacle_response != ObstacleResponse::reflect;
     b = obstacle_box(run_.env_, run_.p_.fo, run_.robot_.x(), run_.robot_.y(), band,
                      box_reach_cells * run_.grid_.cell_size(), pushes);
   }
@@ -147,6 +148,7 @@ void LaneBinding::lane_box(LaneArrays& a, int l) const {
   a.near_x1[l] = b.near.x1;
   a.near_y0[l] = b.near.y0;
   a.near_y1[l] = b.near.y1;
+  a.near_mirror[l] = run_.p_.obstacle_response == ObstacleResponse::mirror ? 1.0 : 0.0;
 }
 
 void LaneBinding::lane_cell(LaneArrays& a, int l) const {

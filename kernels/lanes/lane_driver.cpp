@@ -119,7 +119,7 @@ class LaneDriver final : public LaneSink {
     a_.last_dir[l] = -1;
     a_.obstacles[l] = false;
     a_.box_x0[l] = a_.box_x1[l] = a_.box_y0[l] = a_.box_y1[l] = 0.0;
-    a_.near_x0[l] = a_.near_x1[l] = a_.near_y0[l] = a_.near_y1[l] = 0.0;
+    a_.near_x0[l] = a_.near_x1[l] = a_.near_y0[l] = a_.near_y1[l] = a_.near_mirror[l] = 0.0;
     a_.visited[l] = a_.cover_sum[l] = 0.0;
     a_.needed[l] = 1.0;
   }

@@ -38,18 +38,23 @@ struct FastPathInputs {
   V lo_x, hi_x, lo_y, hi_y, fh, inv, mi, mj, budget, stuck_time, niter;
   decltype(V() < V()) fast_ok, fast_cross;                               // fast >= 1, fast == 2
   V box_x0, box_x1, box_y0, box_y1, near_x0, near_x1, near_y0, near_y1;  // the general form's
+  decltype(V() < V()) near_mirror;
 };
 
 template <class V>
 inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
   const V fast = lane_load<V>(a.fast + o);
-  return {lane_load<V>(a.lo_x + o),       lane_load<V>(a.hi_x + o),    lane_load<V>(a.lo_y + o),
-          lane_load<V>(a.hi_y + o),       lane_load<V>(a.fh + o),      lane_load<V>(a.inv_cell + o),
-          lane_load<V>(a.max_i + o),      lane_load<V>(a.max_j + o),   lane_load<V>(a.budget + o),
-          lane_load<V>(a.stuck_time + o), lane_load<V>(a.niter + o),   fast >= lane::splat<V>(1.0),
-          fast == lane::splat<V>(2.0),    lane_load<V>(a.box_x0 + o),  lane_load<V>(a.box_x1 + o),
-          lane_load<V>(a.box_y0 + o),     lane_load<V>(a.box_y1 + o),  lane_load<V>(a.near_x0 + o),
-          lane_load<V>(a.near_x1 + o),    lane_load<V>(a.near_y0 + o), lane_load<V>(a.near_y1 + o)};
+  return {lane_load<V>(a.lo_x + o),    lane_load<V>(a.hi_x + o),
+          lane_load<V>(a.lo_y + o),    lane_load<V>(a.hi_y + o),
+          lane_load<V>(a.fh + o),      lane_load<V>(a.inv_cell + o),
+          lane_load<V>(a.max_i + o),   lane_load<V>(a.max_j + o),
+          lane_load<V>(a.budget + o),  lane_load<V>(a.stuck_time + o),
+          lane_load<V>(a.niter + o),   fast >= lane::splat<V>(1.0),
+          fast == lane::splat<V>(2.0), lane_load<V>(a.box_x0 + o),
+          lane_load<V>(a.box_x1 + o),  lane_load<V>(a.box_y0 + o),
+          lane_load<V>(a.box_y1 + o),  lane_load<V>(a.near_x0 + o),
+          lane_load<V>(a.near_x1 + o), lane_load<V>(a.near_y0 + o),
+          lane_load<V>(a.near_y1 + o), lane_load<V>(a.near_mirror + o) == lane::splat<V>(1.0)};
 }
 
 // The step's common case, vectorised (see LaneArrays). Mirrors
@@ -90,8 +95,9 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
     } else {
       // Eq. 8 (keep_out_of_obstacles) for a step that ends in the lane's
       // obstacle box: a position in near's open rectangle goes to its face of
-      // least penetration, in move_to_face's order (left, right, bottom, top);
-      // applied only when that face point is in the box too (obstacle_box).
+      // least penetration, in move_to_face's order (left, right, bottom, top),
+      // or is reflected about it (near_mirror); applied only when the point
+      // it reaches is in the box too (obstacle_box).
       const auto in_box = [&c](V x, V y) {
         return (x >= c.box_x0) & (x <= c.box_x1) & (y >= c.box_y0) & (y <= c.box_y1);
       };
@@ -102,8 +108,10 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
       const V m_y = lane::select(to_top < to_bottom, to_top, to_bottom);
       const V m = lane::select(m_y < m_x, m_y, m_x);
       const auto left = to_left == m, right = to_right == m, on_x = left | right;
-      const V PX = lane::select(left, c.near_x0, lane::select(right, c.near_x1, X1));
-      const V PY = lane::select(on_x, Y1, lane::select(to_bottom == m, c.near_y0, c.near_y1));
+      const V face_x = lane::select(left, c.near_x0, c.near_x1),
+              face_y = lane::select(to_bottom == m, c.near_y0, c.near_y1);
+      const V PX = lane::select(on_x, lane::select(c.near_mirror, (face_x + face_x) - X1, face_x), X1);
+      const V PY = lane::select(on_x, Y1, lane::select(c.near_mirror, (face_y + face_y) - Y1, face_y));
       X1 = lane::select(pushed, PX, X1);
       Y1 = lane::select(pushed, PY, Y1);
       return ends_in & in_box(X1, Y1);

@@ -175,8 +175,8 @@ TEST(ObstacleGeometry, IndexedQueriesAnswerAsAScanOfEveryObstacle) {
 // The lanes apply Eq. 8 themselves inside a lane's obstacle box
 // (kernels/lanes): for every point P of the box, keep_out_of_obstacles must
 // move P only when the box's near obstacle (grown by fo) holds it, and then
-// once, onto that rectangle's face of least penetration, whenever that face
-// point is in the box too. Checked on Table 1's five squares and on maps of
+// once, onto (or about) that rectangle's face of least penetration, whenever
+// the point it reaches is in the box too. Checked on Table 1's five squares and on maps of
 // overlapping obstacles scanned and indexed (400: the index's queries), at
 // points anywhere in the box, on its edges and corners, on the faces and
 // just inside them.
@@ -198,6 +198,7 @@ TEST(ObstacleGeometry, InAnObstacleBoxEq8IsAtMostOnePushOntoTheNearObstacle) {
           double x = band.x0 + (band.x1 - band.x0) * uniform01(s), y = band.y0 + (band.y1 - band.y0) * uniform01(s);
           if (k % 5) keep_out_of_obstacles(env, fo, false, x, y);
           const double reach = 1 + 10 * uniform01(s);
+          const bool mirror = k % 3 == 2;  // obstacle_response = "mirror": reflected about the face
           const ObstacleBox b = obstacle_box(env, fo, x, y, band, reach, with_near);
           if (b.box.x0 > b.box.x1) {
             ++empty;
@@ -224,20 +225,21 @@ TEST(ObstacleGeometry, InAnObstacleBoxEq8IsAtMostOnePushOntoTheNearObstacle) {
               if (q % 6 == 5) px = in_box_x(std::nextafter(fx, cx)), py = in_box_y(std::nextafter(fy, cy));
             }
             double qx = px, qy = py;
-            const ObstacleHit hit = keep_out_of_obstacles(env, fo, false, qx, qy);
+            const ObstacleHit hit = keep_out_of_obstacles(env, fo, mirror, qx, qy);
             if (!g.contains(px, py)) {
               ASSERT_FALSE(hit.moved) << px << ", " << py << " fo " << fo;
               ++still;
               continue;
             }
-            // move_to_face onto near's face of least penetration.
+            // move_to_face onto (mirror: about) near's face of least penetration.
             const double to_left = px - g.x0, to_right = g.x1 - px, to_bottom = py - g.y0, to_top = g.y1 - py;
             const double m = std::min({to_left, to_right, to_bottom, to_top});
             double ex = px, ey = py;
-            if (m == to_left) ex = g.x0;
-            else if (m == to_right) ex = g.x1;
-            else if (m == to_bottom) ey = g.y0;
-            else ey = g.y1;
+            const auto place = [mirror](double& u, double face) { u = mirror ? (face + face) - u : face; };
+            if (m == to_left) place(ex, g.x0);
+            else if (m == to_right) place(ex, g.x1);
+            else if (m == to_bottom) place(ey, g.y0);
+            else place(ey, g.y1);
             if (!b.box.contains_closed(ex, ey)) continue;  // the lanes leave it to the planner
             ASSERT_TRUE(same_bits(qx, ex) && same_bits(qy, ey)) << px << ", " << py << " fo " << fo;
             ASSERT_EQ(hit.x_faces + hit.y_faces, 1);
