@@ -17,6 +17,7 @@
 
 #include "engine/store/h5_store.hpp"
 #include "kernels/lanes/simd_target.hpp"
+#include "tests/support/sanitizers.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -153,7 +154,7 @@ std::string cheap_spec(int a_values, int b_values) {
 // timed hand-over once waited for the batch's threads and kept no row.
 TEST(CliSweep, KilledAfterFiveSecondsItKeepsItsFinishedRowsAndResumes) {
   TempDir tmp;
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(CHAOSWEEP_TEST_SANITIZED)
   const char* budget = "24000";  // sanitized kernels are several times slower
 #else
   const char* budget = "300000";  // about 13 s of runs on one core here
@@ -287,7 +288,7 @@ TEST(CliMerge, ARunIdOutsideTheSpecNamesTheDamagedShardInLittleTimeAndMemory) {
   EXPECT_EQ(r.exit_code, 2);
   const auto at = r.err.rfind("peak ");
   ASSERT_NE(at, std::string::npos) << r.err;
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(CHAOSWEEP_TEST_SANITIZED)
   const long limit_kib = 1024 * 1024;  // the sanitizers' own memory
 #else
   const long limit_kib = 200 * 1024;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs a libFuzzer target (built by CMake with the fuzz preset, see
+# Runs a libFuzzer target (built by CMake with the debug preset, see
 # tests/fuzz/CMakeLists.txt) for a bounded time on a temporary corpus (new
 # inputs stay there): the hand-written seeds of tests/fuzz/corpus_<dir> and,
 # for the parsers, the shipped inputs (experiments/*.toml, experiments/envs/
@@ -13,7 +13,7 @@ fuzzer=$1 name=$2 seconds=$3
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 if [[ ! -x $fuzzer ]]; then
-  echo "run_fuzz: no fuzzer at '$fuzzer' (build it: cmake --preset fuzz && cmake --build --preset fuzz)" >&2
+  echo "run_fuzz: no fuzzer at '$fuzzer' (build it: cmake --preset debug && cmake --build --preset debug)" >&2
   exit 1
 fi
 fuzzer=$(cd "$(dirname "$fuzzer")" && pwd)/$(basename "$fuzzer")
