@@ -107,7 +107,8 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
       const V m_x = lane::select(to_right < to_left, to_right, to_left);
       const V m_y = lane::select(to_top < to_bottom, to_top, to_bottom);
       const V m = lane::select(m_y < m_x, m_y, m_x);
-      const auto left = to_left == m, right = to_right == m, on_x = left | right;
+      const auto left = to_left == m;
+      const auto on_x = left | (to_right == m);  // a mask (int for the scalar double lanes)
       const V face_x = lane::select(left, c.near_x0, c.near_x1),
               face_y = lane::select(to_bottom == m, c.near_y0, c.near_y1);
       const V PX = lane::select(on_x, lane::select(c.near_mirror, (face_x + face_x) - X1, face_x), X1);
