@@ -24,7 +24,8 @@ class RobotMotion {
         x_(p.start_x),
         y_(p.start_y),
         ux_(p.start_x),
-        uy_(p.start_y) {
+        uy_(p.start_y),
+        clear_reach_(clear_reach_cells * grid.cell_size()) {
     grid_.mark_point(x_, y_);
   }
 
@@ -74,9 +75,24 @@ class RobotMotion {
     else grid_.mark_point(x_, y_);
   }
 
+  // A box of the map that meets no obstacle's margin (obstacle_box without a
+  // near one): keep_out_of_obstacles leaves a position in it where it is, so
+  // a move that ends there skips the pass over the obstacles (a fifth of the
+  // Logistic planner's time on five squares). The box stays true wherever
+  // the robot goes; it is made anew around the robot, after a move that left
+  // it, at most every clear_refresh_moves moves: beside an obstacle the robot
+  // leaves each new box at once, and a box costs several passes.
+  static constexpr double clear_reach_cells = 16;
+  static constexpr int clear_refresh_moves = 8;
+
   void push_out() {
+    if (clear_.contains_closed(x_, y_)) return;
     const double bx = x_, by = y_;
     const ObstacleHit hit = keep_out_of_obstacles(env_, fo_, mirror_, x_, y_);
+    if (++since_clear_ >= clear_refresh_moves) {
+      since_clear_ = 0;
+      clear_ = obstacle_box(env_, fo_, x_, y_, {0.0, 0.0, env_.lx, env_.ly}, clear_reach_, false).box;
+    }
     if (!hit.moved) return;
     if (reflect_) {  // a bounce: the motion along each axis reflected an odd number of times reverses
       if (hit.x_faces % 2) sx_ = -sx_;
@@ -101,6 +117,9 @@ class RobotMotion {
   double sx_ = 1.0, sy_ = 1.0;  // reflect: the signs the displacement takes (a bounce reverses one)
   double x_, y_;                // position in the map
   double ux_, uy_;              // unfolded position (fold boundary only)
+  double clear_reach_;          // how far a clear box reaches from the robot at most
+  Rect clear_ = no_rect;        // see push_out
+  int since_clear_ = clear_refresh_moves;
 };
 
 }  // namespace chaosweep

@@ -11,9 +11,11 @@
 #include <limits>
 #include <vector>
 
+#include "kernels/core/boundary.hpp"
 #include "kernels/core/clutter.hpp"
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
+#include "kernels/core/robot_motion.hpp"
 #include "kernels/math/splitmix.hpp"
 #include "kernels/planners/planner.hpp"
 #include "tests/support/kernel_test_util.hpp"
@@ -208,7 +210,9 @@ TEST(ObstacleGeometry, InAnObstacleBoxEq8IsAtMostOnePushOntoTheNearObstacle) {
           ASSERT_TRUE(b.box.contains_closed(x, y)) << x << ", " << y;
           ASSERT_TRUE(b.box.x0 >= band.x0 && b.box.x1 <= band.x1 && b.box.y0 >= band.y0 && b.box.y1 <= band.y1);
           ASSERT_TRUE(b.box.x0 >= x - reach && b.box.x1 <= x + reach && b.box.y0 >= y - reach && b.box.y1 <= y + reach);
-          if (!with_near) ASSERT_TRUE(b.near.x0 > b.near.x1);
+          if (!with_near) {
+            ASSERT_TRUE(b.near.x0 > b.near.x1);
+          }
           const Rect& g = b.near;
           const auto in_box_x = [&](double u) { return std::clamp(u, b.box.x0, b.box.x1); };
           const auto in_box_y = [&](double u) { return std::clamp(u, b.box.y0, b.box.y1); };
@@ -251,6 +255,58 @@ TEST(ObstacleGeometry, InAnObstacleBoxEq8IsAtMostOnePushOntoTheNearObstacle) {
   EXPECT_GT(pushes, 1000);
   EXPECT_GT(still, 10000);
   EXPECT_GT(empty, 0);  // a robot inside a grown rectangle that is not the nearest, or between two of them
+}
+
+// RobotMotion skips the pass over the obstacles while the robot is in a box
+// that meets no obstacle's margin: every move still ends where the pass after
+// every move puts it, bit for bit (Eq. 7 at the walls, then Eq. 8 read as
+// obstacle_response, then the clamp into the map after a push).
+TEST(ObstacleGeometry, TheRobotsClearBoxesChangeNoMove) {
+  Environment five = test::square_map(
+      50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}});
+  Environment many = random_map(5, 400, 30);
+  many.index_obstacles();
+  ASSERT_NE(many.usable_index(), nullptr);
+  const Environment maps[] = {five, random_map(6, 25, 30), many};
+  std::uint64_t s = 7;
+  long moves = 0, pushed = 0;
+  for (const Environment& env : maps)
+    for (const double fo : {0.5, 2.0})
+      for (const ObstacleResponse response :
+           {ObstacleResponse::push, ObstacleResponse::mirror, ObstacleResponse::reflect}) {
+        RunParams p = test::small_run(env.lx);
+        p.fo = fo;
+        p.obstacle_response = response;
+        double x = fo + (env.lx - 2 * fo) * uniform01(s), y = fo + (env.ly - 2 * fo) * uniform01(s);
+        keep_out_of_obstacles(env, fo, false, x, y);
+        p.start_x = x;
+        p.start_y = y;
+        CoverageGrid grid(env, 1.0);
+        RobotMotion robot(p, env, grid);
+        const bool mirror = response != ObstacleResponse::push;
+        double sx = 1, sy = 1, heading = 6.283 * uniform01(s);
+        for (int i = 0; i < 20000; ++i, ++moves) {
+          // A heading that turns slowly, so that the robot crosses boxes and meets obstacles.
+          heading += 0.6 * (uniform01(s) - 0.5);
+          const double len = i % 97 == 0 ? 5.0 : 0.05 + 0.4 * uniform01(s);
+          const double dx = len * std::cos(heading), dy = len * std::sin(heading);
+          robot.move(dx, dy);
+          x = mirror_eq7(x + sx * dx, 0.0, env.lx, fo);
+          y = mirror_eq7(y + sy * dy, 0.0, env.ly, fo);
+          const ObstacleHit hit = keep_out_of_obstacles(env, fo, mirror, x, y);
+          if (hit.moved) {
+            ++pushed;
+            if (response == ObstacleResponse::reflect && hit.x_faces % 2) sx = -sx;
+            if (response == ObstacleResponse::reflect && hit.y_faces % 2) sy = -sy;
+            x = std::clamp(x, 0.0, env.lx);
+            y = std::clamp(y, 0.0, env.ly);
+          }
+          ASSERT_TRUE(same_bits(robot.x(), x) && same_bits(robot.y(), y))
+              << "move " << i << ": " << robot.x() << ", " << robot.y() << " against " << x << ", " << y;
+        }
+      }
+  EXPECT_EQ(moves, 360000);
+  EXPECT_GT(pushed, 5000);  // the walk meets obstacles often enough to test the boxes' edges
 }
 
 TEST(ObstacleGeometry, ARunOnAnIndexedMapEqualsTheRunOnTheSameMapScanned) {
