@@ -1,17 +1,18 @@
 #include "analysis/plot.hpp"
 
-#include <mgl2/mgl.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 
+#include "analysis/mathgl.hpp"
 #include "analysis/result_set.hpp"
 
 namespace chaosweep {
 
 namespace fs = std::filesystem;
+using mathgl::Data;
+using mathgl::Graph;
 
 namespace {
 
@@ -32,7 +33,7 @@ std::string literal(const std::string& s) {
 }
 
 // Saves in the format of the path's extension, aside first, then renamed.
-void save(mglGraph& gr, const std::string& path) {
+void save(Graph& gr, const std::string& path) {
   check_image_path(path);
   const fs::path target(path);
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
@@ -44,7 +45,7 @@ void save(mglGraph& gr, const std::string& path) {
   std::string written;
   if (ext == ".png") {
     written = stem + ".png";
-    gr.WritePNG(written.c_str(), "", false);
+    gr.WritePNGSolid(written.c_str(), "");
   } else if (ext == ".svg") {
     written = stem + ".svg";
     gr.WriteSVG(written.c_str(), "");
@@ -70,7 +71,7 @@ std::pair<double, double> padded(double lo, double hi) {
   return {lo, hi};
 }
 
-void frame(mglGraph& gr, const std::string& title, const std::string& xlabel, const std::string& ylabel) {
+void frame(Graph& gr, const std::string& title, const std::string& xlabel, const std::string& ylabel) {
   gr.SetFontSize(3.2);
   if (!title.empty()) gr.Title(literal(title).c_str(), "", title.size() > 40 ? -1.1 : -1.4);
   gr.Box();
@@ -91,8 +92,7 @@ constexpr const char* mark_style = "r#o";  // a filled red dot, as in the papers
 // The mark and its label on the side given (automatic: chosen by the caller);
 // `pad` puts a white box behind the label (over a colour map). z lifts both
 // above the faces (MathGL hides what lies below).
-void put_mark(mglGraph& gr, const PlotMark& m, LabelSide side, const Frame& f, double scale, bool pad,
-              RenderReport& rep) {
+void put_mark(Graph& gr, const PlotMark& m, LabelSide side, const Frame& f, double scale, bool pad, RenderReport& rep) {
   gr.Mark(mglPoint(m.x, m.y, 0.8), mark_style);
   rep.mark_style = mark_style;
   rep.label_side = side;
@@ -111,7 +111,7 @@ struct LegendEntry {
 
 // The legend right of the axes, in the plot's coordinates beyond its edge
 // (MathGL's own legend stays inside the axes, over the data).
-void outside_legend(mglGraph& gr, const Frame& f, const std::vector<LegendEntry>& entries, const LegendLayout& l,
+void outside_legend(Graph& gr, const Frame& f, const std::vector<LegendEntry>& entries, const LegendLayout& l,
                     double z) {
   gr.SetCut(false);
   const double w = f.x1 - f.x0, h = f.y1 - f.y0;
@@ -131,7 +131,7 @@ void outside_legend(mglGraph& gr, const Frame& f, const std::vector<LegendEntry>
 }
 
 // A title over the whole canvas, then the plot's cell of `share` of the width.
-void title_and_cell(mglGraph& gr, const std::string& title, double share) {
+void title_and_cell(Graph& gr, const std::string& title, double share) {
   gr.SetFontSize(3.2);
   // At a fixed place on the canvas (":A"): Title() beside a MultiPlot cell
   // clipped the top of the text.
@@ -166,7 +166,7 @@ RenderReport render(const HeatmapPlot& p, const std::string& path, ImageSize siz
   const long nx = long(p.xs.size()), ny = long(p.ys.size());
   if (nx < 1 || ny < 1 || p.z.size() != std::size_t(nx * ny)) throw AnalysisError("heatmap: no data to draw");
   RenderReport rep;
-  mglGraph gr(0, size.width, size.height);
+  Graph gr(size.width, size.height);
   double zlo = std::numeric_limits<double>::infinity(), zhi = -zlo;
   for (double v : p.z)
     if (!std::isnan(v)) zlo = std::min(zlo, v), zhi = std::max(zhi, v);
@@ -218,7 +218,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
   for (const LineSeries& s : p.series)
     if (!s.name.empty()) ++named, longest = std::max(longest, s.name.size());
   rep.legend_outside = named > 1;
-  mglGraph gr(0, size.width, size.height);
+  Graph gr(size.width, size.height);
   // A log axis: padded by a factor, and the frame (for label placement) in
   // log10 units, as drawn.
   const auto to_frame = [&](double x) { return p.x_log ? std::log10(x) : x; };
@@ -245,7 +245,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
   for (std::size_t k = 0; k < p.series.size(); ++k) {
     const LineSeries& s = p.series[k];
     if (s.x.empty()) continue;
-    mglData x(long(s.x.size())), y(long(s.y.size()));
+    Data x(long(s.x.size())), y(long(s.y.size()));
     lines.emplace_back();
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       x.a[i] = s.x[i], y.a[i] = s.y[i];
@@ -276,7 +276,7 @@ RenderReport render(const LinePlot& p, const std::string& path, ImageSize size) 
 
 void render(const MapPlot& p, const std::string& path, ImageSize size) {
   if (!(p.lx > 0 && p.ly > 0)) throw AnalysisError("map plot: empty map");
-  mglGraph gr(0, size.width, size.height);
+  Graph gr(size.width, size.height);
   // The title over the whole width, the map left, its legend right of it
   // (inside, it covered the path).
   std::vector<LegendEntry> legend{{"path", "b"}};
@@ -305,7 +305,7 @@ void render(const MapPlot& p, const std::string& path, ImageSize size) {
   // Lines and marks above the faces (z = 0.5): MathGL hides what lies below.
   auto draw = [&](const std::vector<std::pair<double, double>>& pts, const char* pen) {
     if (pts.size() < 2) return;
-    mglData x(long(pts.size())), y(long(pts.size())), z(long(pts.size()));
+    Data x(long(pts.size())), y(long(pts.size())), z(long(pts.size()));
     for (std::size_t i = 0; i < pts.size(); ++i) x.a[i] = pts[i].first, y.a[i] = pts[i].second, z.a[i] = 0.5;
     gr.Plot(x, y, z, pen);
   };

@@ -447,6 +447,23 @@ TEST(CliOutputs, TableFigureAndTraceRefuseAnExistingFileWithoutForce) {
   }
 }
 
+// MathGL is loaded when a figure is drawn, not with the binary
+// (analysis/mathgl.hpp: it costs every command ~40 ms as it loads). The
+// dynamic loader names each library it opens under LD_DEBUG=files.
+TEST(CliOutputs, MathGlIsLoadedOnlyToDrawAFigure) {
+  TempDir tmp;
+  write_file(tmp.file("s.toml"), small_sweep);
+  const auto sweep = run_chaosweep("sweep " + tmp.file("s.toml") + " -q -o " + tmp.file("r.h5"), "LD_DEBUG=files");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  ASSERT_NE(sweep.err.find("file=libhdf5"), std::string::npos) << "the loader named no library:\n" << sweep.err;
+  EXPECT_EQ(sweep.err.find("libmgl"), std::string::npos) << sweep.err;
+  const auto figure =
+      run_chaosweep("figure heatmap " + tmp.file("r.h5") + " --x A --y B -o " + tmp.file("f.png"), "LD_DEBUG=files");
+  ASSERT_EQ(figure.exit_code, 0) << figure.err;
+  EXPECT_NE(figure.err.find("file=libmgl"), std::string::npos) << figure.err;
+  EXPECT_GT(std::filesystem::file_size(tmp.file("f.png")), 1000u);
+}
+
 TEST(CliMerge, ShardsMergedEqualTheSingleMachineFile) {
   TempDir tmp;
   write_file(tmp.file("s.toml"), small_sweep);
