@@ -111,6 +111,16 @@ Environment random_map(std::uint64_t seed, int n, double side) {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+// The maps the box tests walk: Table 1's five squares on 50 m, 25 random
+// obstacles, and 400 of them indexed (the last).
+std::vector<Environment> box_maps() {
+  Environment five = test::square_map(
+      50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}});
+  Environment many = random_map(5, 400, 30);
+  many.index_obstacles();
+  return {five, random_map(6, 25, 30), many};
+}
+
 }  // namespace
 
 TEST(ObstacleGeometry, UnionAreaEqualsTheCellByCellArea) {
@@ -183,12 +193,8 @@ TEST(ObstacleGeometry, IndexedQueriesAnswerAsAScanOfEveryObstacle) {
 // points anywhere in the box, on its edges and corners, on the faces and
 // just inside them.
 TEST(ObstacleGeometry, InAnObstacleBoxEq8IsAtMostOnePushOntoTheNearObstacle) {
-  Environment five = test::square_map(
-      50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}});
-  Environment many = random_map(5, 400, 30);
-  many.index_obstacles();
-  ASSERT_NE(many.usable_index(), nullptr);
-  const Environment maps[] = {five, random_map(6, 25, 30), many};
+  const std::vector<Environment> maps = box_maps();
+  ASSERT_NE(maps.back().usable_index(), nullptr);
   std::uint64_t s = 41;
   int boxes = 0, empty = 0, pushes = 0, still = 0;
   for (const Environment& env : maps)
@@ -262,12 +268,8 @@ TEST(ObstacleGeometry, InAnObstacleBoxEq8IsAtMostOnePushOntoTheNearObstacle) {
 // every move puts it, bit for bit (Eq. 7 at the walls, then Eq. 8 read as
 // obstacle_response, then the clamp into the map after a push).
 TEST(ObstacleGeometry, TheRobotsClearBoxesChangeNoMove) {
-  Environment five = test::square_map(
-      50.0, {{6, 6, 22, 22}, {28, 6, 44, 22}, {6, 28, 22, 44}, {28, 28, 44, 44}, {23.5, 23.5, 26.5, 26.5}});
-  Environment many = random_map(5, 400, 30);
-  many.index_obstacles();
-  ASSERT_NE(many.usable_index(), nullptr);
-  const Environment maps[] = {five, random_map(6, 25, 30), many};
+  const std::vector<Environment> maps = box_maps();
+  ASSERT_NE(maps.back().usable_index(), nullptr);
   std::uint64_t s = 7;
   long moves = 0, pushed = 0;
   for (const Environment& env : maps)
