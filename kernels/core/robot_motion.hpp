@@ -25,7 +25,7 @@ class RobotMotion {
         y_(p.start_y),
         ux_(p.start_x),
         uy_(p.start_y),
-        clear_reach_(clear_reach_cells * grid.cell_size()) {
+        clear_reach_(obstacle_box_reach_cells * grid.cell_size()) {
     grid_.mark_point(x_, y_);
   }
 
@@ -82,7 +82,6 @@ class RobotMotion {
   // the robot goes; it is made anew around the robot, after a move that left
   // it, at most every clear_refresh_moves moves: beside an obstacle the robot
   // leaves each new box at once, and a box costs several passes.
-  static constexpr double clear_reach_cells = 16;
   static constexpr int clear_refresh_moves = 8;
 
   void push_out() {

@@ -119,11 +119,6 @@ void LaneBinding::write_robot(LaneArrays& a, int l) {
   lane_box(a, l);
 }
 
-// How far an obstacle box reaches from the robot at most, in cells: a wide
-// box is left less often; on a map of many obstacles a box is cut much
-// smaller anyway.
-constexpr double box_reach_cells = 16;
-
 void LaneBinding::lane_box(LaneArrays& a, int l) const {
   const Rect band{a.lo_x[l], a.lo_y[l], a.hi_x[l], a.hi_y[l]};
   ObstacleBox b{band, no_rect};
@@ -138,7 +133,7 @@ void LaneBinding::lane_box(LaneArrays& a, int l) const {
     // motion): else no obstacle is near.
     const bool pushes = run_.p_.boundary == Boundary::mirror && run_.p_.obstacle_response != ObstacleResponse::reflect;
     b = obstacle_box(run_.env_, run_.p_.fo, run_.robot_.x(), run_.robot_.y(), band,
-                     box_reach_cells * run_.grid_.cell_size(), pushes);
+                     obstacle_box_reach_cells * run_.grid_.cell_size(), pushes);
   }
   a.box_x0[l] = b.box.x0;
   a.box_x1[l] = b.box.x1;
