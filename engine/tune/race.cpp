@@ -102,7 +102,12 @@ void Race::add_initial(int n) {
     c.probabilities = uniform_probabilities;
     for (std::size_t i = 0; i < d; ++i) {
       const TuneParameter& p = parameters_[i];
-      const double u = (strata[i][std::size_t(k)] + uniform()) / double(n);
+      // A real's outermost strata sample its range's ends themselves: CT
+      // often falls all the way to an end (c = 1 or f = 6 on several Table 1
+      // maps), and no draw inside a stratum reaches it.
+      const int stratum = strata[i][std::size_t(k)];
+      double u = (stratum + uniform()) / double(n);
+      if (p.real && n > 2 && (stratum == 0 || stratum == n - 1)) u = stratum == 0 ? 0.0 : 1.0;
       c.values.push_back(p.real ? rounded(p.lo + u * (p.hi - p.lo), p)
                                 : std::min(double(p.choices.size() - 1), std::floor(u * double(p.choices.size()))));
     }
@@ -111,8 +116,10 @@ void Race::add_initial(int n) {
 }
 
 // Children of the elites: the parent drawn with weight (elites - rank + 1);
-// a real from a normal around the parent's value, truncated to the range,
-// its spread (range / 2) shrinking by (1/N_1)^(1/parameters) per iteration;
+// a real from a normal around the parent's value, its spread (range / 2)
+// shrinking by (1/N_1)^(1/parameters) per iteration, and a draw beyond the
+// range put on the range's end (irace draws again instead, so an optimum at
+// an end is only ever approached: see add_initial);
 // a choice from the parent's probabilities moved towards its own value.
 void Race::add_children(int n) {
   const std::size_t e = elites_.size();
@@ -134,12 +141,7 @@ void Race::add_children(int n) {
       const TuneParameter& p = parameters_[i];
       if (p.real) {
         const double sd = (p.hi - p.lo) / 2.0 * shrink;
-        double v = parent.values[i];
-        for (int k = 0; k < 100; ++k) {
-          v = parent.values[i] + sd * normal();
-          if (v >= p.lo && v <= p.hi) break;
-        }
-        c.values.push_back(rounded(std::clamp(v, p.lo, p.hi), p));
+        c.values.push_back(rounded(std::clamp(parent.values[i] + sd * normal(), p.lo, p.hi), p));
       } else {
         std::vector<double>& q = c.probabilities[i];
         for (double& x : q) x *= 1.0 - towards;

@@ -4,8 +4,9 @@
 // sampled over the domain race on seeds 0, 1, ... (every configuration of a
 // race on the same seeds, so the test is blocked on the seed); those a test
 // shows worse are dropped; the best survivors are the elites, and new
-// configurations are sampled around them (reals: a truncated normal whose
-// spread shrinks each iteration; choices: probabilities moved towards the
+// configurations are sampled around them (reals: a normal whose spread
+// shrinks each iteration, a draw beyond the range landing on its end, as the
+// first sample holds the ends too; choices: probabilities moved towards the
 // elite's value) for the next race, until the iterations' share of the
 // budget is spent; the rest (post_selection) races the last elites alone on
 // further seeds, and the survivor is the choice.

@@ -181,6 +181,30 @@ TEST(Race, FindsTheMadeUpOptimumWithinItsBudget) {
   EXPECT_EQ(std::strtod(buf, nullptr), best.values[0]);
 }
 
+// Where the cost falls all the way to a range's end (as CT does towards c = 1
+// on some Table 1 maps), the race must be able to choose the end itself: a
+// child drawn beyond it lands on it, rather than being drawn again inside.
+TEST(Race, ReachesAnOptimumAtTheEndOfARange) {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    TuneSpec settings;
+    Race r({TuneParameter{"c", true, 0.05, 1.0, {}}}, 300, settings, seed);
+    for (std::vector<RaceEvaluation> step = r.next(); !step.empty(); step = r.next()) {
+      std::vector<double> costs;
+      for (const RaceEvaluation& e : step) {
+        std::uint64_t s = std::uint64_t(e.seed) * 7919;
+        costs.push_back(100 * (1 - r.candidate(e.config).values[0]) + 5 * uniform01(s));
+      }
+      r.take(costs);
+    }
+    ASSERT_NE(r.best(), 0);
+    EXPECT_EQ(r.candidate(r.best()).values[0], 1.0) << "seed " << seed;
+    for (const Candidate& c : r.candidates()) {
+      EXPECT_GE(c.values[0], 0.05);
+      EXPECT_LE(c.values[0], 1.0);
+    }
+  }
+}
+
 TEST(Race, EveryRaceRunsItsConfigurationsOnTheSameSeedsFromZeroAndNeverTwice) {
   Race r = made_up_race(300, 5);
   const RaceLog log = run_made_up(r);
