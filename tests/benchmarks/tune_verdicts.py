@@ -96,7 +96,7 @@ def main():
     text = Path(a.spec).read_text()
     spec = tomllib.loads(text)
     seeds = [int(s) for s in a.tuner_seeds.split(",")]
-    picks, grid = {}, {}
+    picks, grid, printed = {}, {}, {}
     for s in seeds:
         spec_s = a.out / f"tune_s{s}.toml"
         spec_s.write_text(with_tuner_seed(text, s))
@@ -109,8 +109,7 @@ def main():
             if m:
                 picks[s][m[1].strip()] = m[2].strip()
                 grid[m[1].strip()] = m[3].strip()
-        printed = re.search(r"in (\d+) of (\d+) cases", table)
-        picks[s]["verdict"] = int(printed[1])
+        printed[s] = int(re.search(r"in (\d+) of \d+ cases", table)[1])
     choices = {c: {g} | {picks[s][c] for s in seeds} for c, g in grid.items()}
     choices = {c: v for c, v in choices.items() if len(v) > 1}  # the others tie whatever the seeds
     truth = a.out / "further.toml"
@@ -140,7 +139,7 @@ def main():
     print("|---|---|---|---|")
     for s in seeds:
         v = [verdicts(c, picks[s][c]) for c in grid]
-        print(f"| {s} | {picks[s]['verdict']} | {sum(e for e, _ in v):.1f} | {sum(t for _, t in v)} |")
+        print(f"| {s} | {printed[s]} | {sum(e for e, _ in v):.1f} | {sum(t for _, t in v)} |")
     best = {c: min(choices.get(c, {grid[c]}), key=lambda k: np.median(by[f"{c}: {k}"]) if c in choices else 0)
             for c in grid}
     v = [verdicts(c, best[c]) for c in grid]
