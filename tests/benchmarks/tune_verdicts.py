@@ -56,6 +56,11 @@ def toml_value(v):
     return f'"{v}"' if isinstance(v, str) else str(v)
 
 
+def number(text):
+    """A parameter's value as `table tune` prints it ("3", "0.1982")."""
+    return int(text) if text.isdigit() else float(text)
+
+
 def inline(table):
     return "{ " + ", ".join(f"{k} = {toml_value(v)}" for k, v in table.items()) + " }"
 
@@ -70,9 +75,8 @@ def truth_spec(spec, choices, first, count):
         for case in part["case"]:
             for config in sorted(choices.get(case["label"], ())):
                 row = dict(case, label=f"{case['label']}: {config}")
-                row.update(dict(kv.split(" ") for kv in config.split(", ")))
-                cases.append("  " + "{ " + ", ".join(f"{k} = {v if k in ('c', 'f', 'ds_index') else toml_value(v)}"
-                                                      for k, v in row.items()) + " }")
+                row.update((k, number(v)) for k, v in (kv.split(" ") for kv in config.split(", ")))
+                cases.append("  " + inline(row))
         if cases:
             out += ["[[part]]", f'name = "{part["name"]}"']
             if "fixed" in part:
@@ -140,8 +144,7 @@ def main():
     for s in seeds:
         v = [verdicts(c, picks[s][c]) for c in grid]
         print(f"| {s} | {printed[s]} | {sum(e for e, _ in v):.1f} | {sum(t for _, t in v)} |")
-    best = {c: min(choices.get(c, {grid[c]}), key=lambda k: np.median(by[f"{c}: {k}"]) if c in choices else 0)
-            for c in grid}
+    best = {c: min(choices[c], key=lambda k: np.median(by[f"{c}: {k}"])) if c in choices else grid[c] for c in grid}
     v = [verdicts(c, best[c]) for c in grid]
     # Chosen on the further seeds themselves: on all of them it is at or below by construction,
     # and its 32-seed expectation is an upper bound of what these races' choices could give.
