@@ -268,17 +268,24 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
   }
   // Kept between appends and zeroed block by block: a fresh zeroed buffer
   // per batch cost the sweep's serial thread page faults and a memset.
-  if (buf_.size() < n * layout_.row_size) buf_.resize(n * layout_.row_size);
-  unsigned char* const buf = buf_.data();
+  if (buf_size_ < n * layout_.row_size) {
+    buf_ = std::make_unique_for_overwrite<unsigned char[]>(n * layout_.row_size);
+    buf_size_ = n * layout_.row_size;
+  }
+  unsigned char* const buf = buf_.get();
   run_parallel(parallel, parts.size(), [&](std::size_t k) { encode_rows(rows, layout_, partial_, buf, parts[k]); });
-  // A string in the global heap has an address only HDF5 can give: a piece
+  // The pieces that start a chunk are filtered here, the last one too when
+  // it ends short of a chunk (padded with zeros as HDF5 pads it: left to
+  // HDF5, it was filtered on the sweep's serial thread as the file closed,
+  // and a later append into it reads it back through HDF5's filters). A
+  // string in the global heap has an address only HDF5 can give: a piece
   // holding one goes through H5Dwrite.
   run_parallel(parallel, pieces.size(), [&](std::size_t k) {
     Piece& p = pieces[k];
-    if (p.count != chunk_rows || layout_.file_row_size == 0) return;
+    if ((rows_ + p.first) % chunk_rows != 0 || layout_.file_row_size == 0) return;
     for (std::size_t j = k ? pieces[k - 1].parts_end : 0; j < p.parts_end; ++j)
       if (!parts[j].texts.empty()) return;
-    p.chunk = file_chunk(layout_, buf, p.first, p.count);
+    p.chunk = file_chunk(layout_, buf, p.first, p.count, chunk_rows);
   });
   std::size_t text_bytes = 0;
   for (const EncodedRows& p : parts) text_bytes += p.text_bytes;

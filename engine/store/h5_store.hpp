@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <variant>
@@ -98,7 +99,11 @@ class H5RunWriter {
   H5Id file_ = -1, dset_ = -1, type_ = -1;
   std::size_t rows_ = 0;
   RowLayout layout_;
-  std::vector<unsigned char> buf_;  // rows of an append, encoded
+  // Rows of an append, encoded; not zeroed when it grows (encode_rows
+  // zeroes each block on the thread that fills it), so that the first
+  // batch's pages are faulted in on every thread, not the sweep's serial one.
+  std::unique_ptr<unsigned char[]> buf_;
+  std::size_t buf_size_ = 0;
 };
 
 // Writes (or replaces) an attribute on `loc` (a file or group: an hid_t). Throws

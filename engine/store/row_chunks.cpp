@@ -67,9 +67,9 @@ void encode_rows(const std::vector<RunRow>& rows, const RowLayout& layout, const
 }
 
 std::vector<unsigned char> file_chunk(const RowLayout& layout, const unsigned char* buf, std::size_t first,
-                                      std::size_t count) {
+                                      std::size_t count, std::size_t chunk_rows) {
   thread_local std::vector<unsigned char> raw;  // a chunk's worth, kept: no page faults per chunk
-  raw.assign(count * layout.file_row_size, 0);
+  raw.assign(chunk_rows * layout.file_row_size, 0);
   to_file_layout(buf + first * layout.row_size, count, layout, raw.data());
   return shuffled_and_deflated(raw.data(), raw.size(), layout.file_row_size, layout.deflate_level);
 }

@@ -44,8 +44,10 @@ void encode_rows(const std::vector<RunRow>& rows, const RowLayout& layout, const
 
 // The chunk of rows [first, first + count) of `buf` (encoded, holding no
 // variable-length text) as the file stores it: laid out, shuffled and
-// deflated. Safe to call for disjoint chunks at once.
+// deflated, `chunk_rows` rows long (rows past `count` zeros, as HDF5 fills
+// the end of the dataset's last chunk). Safe to call for disjoint chunks at
+// once.
 std::vector<unsigned char> file_chunk(const RowLayout& layout, const unsigned char* buf, std::size_t first,
-                                      std::size_t count);
+                                      std::size_t count, std::size_t chunk_rows);
 
 }  // namespace chaosweep

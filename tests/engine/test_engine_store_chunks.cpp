@@ -1,5 +1,5 @@
-// The writer's own chunks (row_chunks.hpp: whole chunks encoded, shuffled
-// and deflated off the HDF5 library, on many threads) and merge's (shards'
+// The writer's own chunks (row_chunks.hpp: the chunks a write starts
+// encoded, shuffled and deflated off the HDF5 library, on many threads) and merge's (shards'
 // chunks unfiltered, interleaved and filtered again) must be the very bytes
 // HDF5's write path makes, and read back as the rows given.
 #include <gtest/gtest.h>
@@ -57,6 +57,35 @@ std::vector<std::vector<unsigned char>> raw_chunks(const std::string& path) {
   H5Dclose(dset);
   H5Fclose(file);
   return out;
+}
+
+// /runs of `from` written to a new file `to` by HDF5 alone (one H5Dwrite of
+// all rows, the dataset's own creation properties): the bytes HDF5 stores.
+void hdf5_copy(const std::string& from, const std::string& to) {
+  const hid_t src = H5Fopen(from.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t dset = H5Dopen2(src, "/runs", H5P_DEFAULT);
+  const hid_t ftype = H5Dget_type(dset), type = H5Tget_native_type(ftype, H5T_DIR_DEFAULT);
+  const hid_t space = H5Dget_space(dset), dcpl = H5Dget_create_plist(dset);
+  hsize_t rows = 0;
+  H5Sget_simple_extent_dims(space, &rows, nullptr);
+  std::vector<unsigned char> buf(rows * H5Tget_size(type));
+  ASSERT_GE(H5Dread(dset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()), 0);
+  const hid_t dst = H5Fcreate(to.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t maxdims = H5S_UNLIMITED;
+  const hid_t out_space = H5Screate_simple(1, &rows, &maxdims);
+  const hid_t out = H5Dcreate2(dst, "runs", ftype, out_space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  ASSERT_GE(out, 0);
+  ASSERT_GE(H5Dwrite(out, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()), 0);
+  H5Dvlen_reclaim(type, space, H5P_DEFAULT, buf.data());
+  H5Dclose(out);
+  H5Sclose(out_space);
+  H5Fclose(dst);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Tclose(ftype);
+  H5Dclose(dset);
+  H5Fclose(src);
 }
 
 // Every column of the file, wall_time included (the same rows were written).
@@ -138,32 +167,40 @@ TEST(StoreChunks, ShuffledAndDeflatedWithAKeptStreamIsEachChunkCompressedAlone) 
     }
 }
 
-TEST(StoreChunks, WholeChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
+TEST(StoreChunks, ChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
   test::TempDir tmp;
   CountedThreads threads;
   const ParallelFor& parallel = threads.parallel;
   const std::atomic<int>& calls = threads.calls;
   for (std::size_t message_every : {std::size_t(0), std::size_t(1500)}) {
     const std::vector<RunRow> rows = rows_of(5000, message_every);
-    // Appends of 4096 rows: chunks 0-3 whole (made by the writer unless they
-    // hold a message); appends of 1000: no piece is a whole chunk, every row
-    // goes through H5Dwrite (HDF5's filters).
+    // The writer makes every chunk that an append's piece starts (unless it
+    // holds a message); HDF5 writes the rest of a chunk a piece started
+    // short. Appends of 4096 rows: chunks 0-3 whole and chunk 4 (rows
+    // 4096-4999, the file's end) padded; of 2548: chunk 2 made with rows
+    // 2048-2547, then rows 2548-3071 written into it by HDF5; of 1000 (on
+    // one thread): every chunk so. The reference: HDF5 writing all rows.
     write(tmp.file("own.h5"), rows, 4096, parallel);
-    write(tmp.file("hdf5.h5"), rows, 1000, nullptr);
-    const auto own = raw_chunks(tmp.file("own.h5")), hdf5 = raw_chunks(tmp.file("hdf5.h5"));
-    ASSERT_EQ(own.size(), 5u);
+    write(tmp.file("refilled.h5"), rows, 2548, parallel);
+    write(tmp.file("small.h5"), rows, 1000, nullptr);
+    hdf5_copy(tmp.file("own.h5"), tmp.file("hdf5.h5"));
+    const auto hdf5 = raw_chunks(tmp.file("hdf5.h5"));
     ASSERT_EQ(hdf5.size(), 5u);
-    // A chunk holding a message refers to it by its place in the global
-    // heap, which differs with the order of the writes: compared as rows.
-    for (std::size_t c = 0; c < own.size(); ++c) {
-      if (!chunk_has_message(c, 5000, message_every)) {
-        EXPECT_EQ(own[c], hdf5[c]) << "chunk " << c;
+    for (const char* name : {"own.h5", "refilled.h5", "small.h5"}) {
+      const auto own = raw_chunks(tmp.file(name));
+      ASSERT_EQ(own.size(), 5u) << name;
+      // A chunk holding a message refers to it by its place in the global
+      // heap, which differs with the order of the writes: compared as rows.
+      for (std::size_t c = 0; c < own.size(); ++c) {
+        if (!chunk_has_message(c, 5000, message_every)) {
+          EXPECT_EQ(own[c], hdf5[c]) << name << " chunk " << c;
+        }
       }
+      expect_same_columns(tmp.file(name), tmp.file("hdf5.h5"));
     }
-    expect_same_columns(tmp.file("own.h5"), tmp.file("hdf5.h5"));
     EXPECT_EQ(read_text_column(tmp.file("own.h5"), "message")[3000], message_every ? "run 3000 said something" : "");
   }
-  EXPECT_EQ(calls.load(), 8);  // two appends of 4096-row batches, twice, each rows then chunks
+  EXPECT_EQ(calls.load(), 16);  // two appends, of 4096 and of 2548 rows, twice, each rows then chunks
 }
 
 // Merge copies the shards' chunks as bytes (no type conversion) where none
