@@ -36,15 +36,18 @@ struct TimedSink {
 // Moves runs [from, to) (tuples and their results) into `piece` for the
 // sink: a vector kept from batch to batch (a fresh one cost the serial
 // thread page faults), filled in blocks through `parallel` when given.
+// Its rows are overwritten, not cleared first: clearing destroyed and made
+// every row again on the sweep's serial thread.
 const std::vector<RunRow>& take_rows(std::vector<RunTuple>& tuples, std::vector<RunResult>& results, std::size_t from,
                                      std::size_t to, std::vector<RunRow>& piece,
                                      const BatchEvaluator* parallel = nullptr) {
-  piece.clear();
   piece.resize(to - from);
   constexpr std::size_t block = 256;
   auto move_block = [&](std::size_t b) {
-    for (std::size_t k = from + b * block; k < std::min(to, from + (b + 1) * block); ++k)
-      piece[k - from] = {std::move(tuples[k]), std::move(results[k])};
+    for (std::size_t k = from + b * block; k < std::min(to, from + (b + 1) * block); ++k) {
+      piece[k - from].tuple = std::move(tuples[k]);
+      piece[k - from].result = std::move(results[k]);
+    }
   };
   const std::size_t blocks = (to - from + block - 1) / block;
   if (parallel) {
@@ -63,7 +66,7 @@ std::size_t run_batch_of(std::vector<RunTuple>& tuples, std::vector<RunResult>& 
                          const BatchEvaluator& evaluator, const SweepOptions& opt, TimedSink* timed,
                          std::size_t& handed) {
   const std::size_t n = tuples.size();
-  results.assign(n, RunResult{});
+  results.resize(n);  // the evaluator resets each slot it is given
   std::unique_ptr<std::atomic<std::uint8_t>[]> finished;
   std::atomic<bool> halt{false};
   BatchObserver observer;
@@ -136,8 +139,9 @@ std::int64_t run_sweep(const SweepSpec& spec, const BatchEvaluator& evaluator, c
   for (std::int64_t first = opt.skip; first < total; first += opt.batch_size) {
     if (opt.stop && opt.stop->load()) break;
     const std::int64_t n = std::min(opt.batch_size, total - first);
-    tuples.assign(std::size_t(n), RunTuple{});
-    // Tuple k into slot k, in blocks on the evaluator's threads.
+    // Tuple k into slot k, in blocks on the evaluator's threads (resized,
+    // not reassigned: each slot is overwritten).
+    tuples.resize(std::size_t(n));
     constexpr std::int64_t block = 256;
     evaluator.parallel(std::size_t((n + block - 1) / block), [&](std::size_t b) {
       for (std::int64_t k = std::int64_t(b) * block; k < std::min(n, std::int64_t(b + 1) * block); ++k) {

@@ -37,12 +37,18 @@ std::size_t ThreadBatchEvaluator::run(std::span<const RunTuple> in, std::span<Ru
                                       const BatchObserver& observer) const {
   const std::size_t n = in.size();
   std::vector<BatchItem> items(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    items[k] = {&in[k].params, in[k].env.get()};
-    out[k] = RunResult{};
-    out[k].status = Status::error;  // stays so only if a worker itself fails
-    out[k].message = "not run: its worker failed";
-  }
+  tbb::task_arena& arena = arena_->arena;
+  // In blocks on the arena's threads: on the caller's alone, the slots'
+  // reset (and the first batch's page faults) kept the other threads idle.
+  constexpr std::size_t block = 256;
+  parallel_indices(arena, (n + block - 1) / block, [&](std::size_t b) {
+    for (std::size_t k = b * block; k < std::min(n, (b + 1) * block); ++k) {
+      items[k] = {&in[k].params, in[k].env.get()};
+      out[k] = RunResult{};
+      out[k].status = Status::error;  // stays so only if a worker itself fails
+      out[k].message = "not run: its worker failed";
+    }
+  });
   RunQueue queue{items.data(), out.data(), n};
   queue.stop = observer.stop;
   queue.finished = observer.finished;
@@ -50,7 +56,6 @@ std::size_t ThreadBatchEvaluator::run(std::span<const RunTuple> in, std::span<Ru
     queue.done = &observer.progress->done;
     queue.not_ok = &observer.progress->failed;
   }
-  tbb::task_arena& arena = arena_->arena;
   const int workers = std::max(1, arena.max_concurrency());
   arena_->batches_running.fetch_add(1, std::memory_order_acq_rel);
   struct Leave {
