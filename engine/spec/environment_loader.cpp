@@ -1,5 +1,6 @@
 #include "engine/spec/environment_loader.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -328,16 +329,47 @@ Environment load_environment(const std::string& spec, double size_x, double size
   return parse_file(path, size_x, size_y, seed, source);
 }
 
+namespace {
+
+// A thread's last lookup in some cache (EnvironmentCache::id_; 0: none).
+struct LastLookup {
+  std::uint64_t cache = 0;
+  std::string spec;
+  double size_x = 0, size_y = 0;
+  std::shared_ptr<const Environment> env;
+};
+thread_local LastLookup last_lookup;
+std::atomic<std::uint64_t> cache_ids{0};
+
+}  // namespace
+
+EnvironmentCache::EnvironmentCache() : id_(++cache_ids) {}
+
 std::shared_ptr<const Environment> EnvironmentCache::get(const std::string& spec, double size_x, double size_y) {
-  std::lock_guard lock(mutex_);
-  auto key = std::tuple{spec, size_x, size_y};
-  auto it = cache_.find(key);
-  if (it != cache_.end()) return it->second;
-  InputRecord source;
-  auto env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y, &source));
-  cache_.emplace(key, env);
-  if (!source.path.empty()) files_[spec] = source;
-  return env;
+  LastLookup& last = last_lookup;
+  // An entry never changes once made, so the one this thread was given last
+  // is still this cache's.
+  if (last.cache == id_ && last.size_x == size_x && last.size_y == size_y && last.spec == spec) return last.env;
+  std::shared_ptr<const Environment> env;
+  {
+    std::lock_guard lock(mutex_);
+    auto key = std::tuple{spec, size_x, size_y};
+    auto it = cache_.find(key);
+    if (it != cache_.end()) {
+      env = it->second;
+    } else {
+      InputRecord source;
+      env = std::make_shared<const Environment>(load_environment(spec, size_x, size_y, &source));
+      cache_.emplace(key, env);
+      if (!source.path.empty()) files_[spec] = source;
+    }
+  }
+  // The thread's own handle on the entry: copies of it count their owners
+  // in a control block of this thread's (an aliasing shared_ptr), not the
+  // entry's, whose count every thread's runs would bump at once.
+  last = {id_, spec, size_x, size_y,
+          std::shared_ptr<const Environment>(std::make_shared<std::shared_ptr<const Environment>>(env), env.get())};
+  return last.env;
 }
 
 std::map<std::string, InputRecord> EnvironmentCache::files() const {

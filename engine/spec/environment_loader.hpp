@@ -1,6 +1,7 @@
 #pragma once
 // Environments are data (docs/spec.md §1): a built-in name or a TOML file. See
 // experiments/envs/README.md for the file format.
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,14 +34,20 @@ std::string find_environment_file(const std::string& name);
 std::optional<std::string_view> builtin_environment(const std::string& name);
 
 // Loads each (spec, size) once; shared by all runs of a sweep.
+// Thread-safe: a sweep's threads resolve their runs through one cache. Each
+// thread remembers the last environment it was given by each cache, so runs
+// of one map in a row take no lock (a lock per run kept two threads waiting
+// on each other).
 class EnvironmentCache {
  public:
+  EnvironmentCache();
   std::shared_ptr<const Environment> get(const std::string& spec, double size_x, double size_y);
   // The file behind each environment loaded so far that came from one,
   // keyed by the name the spec gives ("one_square", "envs/box.toml:3").
   std::map<std::string, InputRecord> files() const;
 
  private:
+  std::uint64_t id_;  // unique per cache, for the threads' last lookups
   mutable std::mutex mutex_;
   std::map<std::tuple<std::string, double, double>, std::shared_ptr<const Environment>> cache_;
   std::map<std::string, InputRecord> files_;

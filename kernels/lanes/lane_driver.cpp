@@ -1,5 +1,6 @@
 #include "kernels/lanes/lane_driver.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <deque>
@@ -48,6 +49,9 @@ class LaneDriver final : public LaneSink {
     for (int l = 0; l < lanes; ++l) load(l);
     active_ = any_active();
   }
+  ~LaneDriver() { flush_counts(); }
+  LaneDriver(const LaneDriver&) = delete;
+  LaneDriver& operator=(const LaneDriver&) = delete;
 
   // The lanes run one system at a time (LaneArrays::system): once the
   // integrator has no active lane, the runs of other systems taken on the
@@ -152,8 +156,17 @@ class LaneDriver final : public LaneSink {
 
   void count(const RunResult& r) {
     if (q_.finished) q_.finished[std::size_t(&r - results_)].store(1, std::memory_order_release);
-    if (q_.done) *q_.done += 1;
-    if (q_.not_ok && r.status != Status::ok) *q_.not_ok += 1;
+    ++done_;
+    not_ok_ += r.status != Status::ok;
+    if (done_ == 32) flush_counts();
+  }
+
+  // The progress counters are shared by every thread: bumped once per run,
+  // their cache line went back and forth between the threads.
+  void flush_counts() {
+    if (q_.done) *q_.done += done_;
+    if (q_.not_ok && not_ok_) *q_.not_ok += not_ok_;
+    done_ = not_ok_ = 0;
   }
 
   // Puts the next run that needs integrating into lane l (or leaves it idle).
@@ -197,7 +210,8 @@ class LaneDriver final : public LaneSink {
   }
 
   // The next run for a lane: one of the current system's taken earlier, else
-  // the queue's next (none once `stop` is set: a taken run always finishes).
+  // one claimed from the queue before, else the queue's next (none once
+  // `stop` is set: a taken run always finishes).
   bool take(std::size_t& item) {
     if (system_ >= 0 && !pending_[std::size_t(system_)].empty()) {
       item = pending_[std::size_t(system_)].front();
@@ -205,13 +219,26 @@ class LaneDriver final : public LaneSink {
       --held_;
       return true;
     }
+    if (claimed_ < claimed_end_) {
+      item = claimed_++;
+      return true;
+    }
     // Holding a lane's worth of other systems' runs, take no more: the lanes
     // drain and turn to them, and the rest of the queue stays for the other
     // threads (else one thread would hold all of a mixed batch's tail).
     if (held_ >= std::size_t(a_.lanes)) return false;
     if (q_.stop && q_.stop->load(std::memory_order_relaxed)) return false;
-    item = q_.next.fetch_add(1);
-    return item < q_.n;
+    // Runs are claimed up to a lane's worth at a time: claimed one by one,
+    // the threads took neighbouring runs, wrote neighbouring results (false
+    // sharing) and bumped `next` once per run. Near the queue's end a claim
+    // shrinks to one run, so no thread holds runs another could start.
+    const std::size_t left = q_.n - std::min(q_.n, q_.next.load(std::memory_order_relaxed));
+    const std::size_t claim = std::clamp<std::size_t>(left / 64, 1, std::size_t(a_.lanes));
+    claimed_ = q_.next.fetch_add(claim);
+    if (claimed_ >= q_.n) return false;
+    claimed_end_ = std::min(q_.n, claimed_ + claim);
+    item = claimed_++;
+    return true;
   }
 
   RunQueue& q_;
@@ -219,9 +246,11 @@ class LaneDriver final : public LaneSink {
   RunResult* results_;
   std::vector<Slot> slots_;
   LaneArrays a_;
-  bool active_ = false;   // some lane has a run
-  int system_ = -1;       // the lanes' system (-1: no lane run yet)
-  std::size_t held_ = 0;  // runs in pending_
+  bool active_ = false;                        // some lane has a run
+  int system_ = -1;                            // the lanes' system (-1: no lane run yet)
+  std::size_t held_ = 0;                       // runs in pending_
+  std::size_t claimed_ = 0, claimed_end_ = 0;  // runs claimed from the queue, not yet taken
+  std::int64_t done_ = 0, not_ok_ = 0;         // counted here, not yet in q_.done and q_.not_ok
   std::vector<std::deque<std::size_t>> pending_ = std::vector<std::deque<std::size_t>>(std::size_t(system_count));
 };
 

@@ -22,10 +22,11 @@ struct BatchItem {
 // results[i] for items[i]; never throws for a failing run (status error).
 void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTarget target);
 
-// Runs shared by several workers: each worker's lanes take the next run from
-// `next` as soon as a lane frees up, so lanes idle only at the very end.
-// `done` (optional) counts finished runs and `not_ok` those not ok, for
-// progress reports.
+// Runs shared by several workers: each worker claims the next few runs from
+// `next` (at most a lane's worth, one near the end) and its lanes take them
+// as soon as a lane frees up, so lanes idle only at the very end. `done`
+// (optional) counts finished runs and `not_ok` those not ok, for progress
+// reports (each worker adds its counts every 32 runs and when it ends).
 struct RunQueue {
   const BatchItem* items;
   RunResult* results;

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <set>
+#include <thread>
 #include <tuple>
 
 #include "engine/rows/json_writer.hpp"
@@ -533,6 +534,32 @@ TEST(Environment, MetreFilesFixTheirOwnSize) {
   EXPECT_EQ(e.obstacles[0].x1, 3.0);
 }
 
+// A thread remembers the last environment each cache gave it (no lock per
+// run): the same entry for the same key, on every thread; another key or
+// another cache looks it up again, so a cache made after the file changed
+// reads the new file.
+TEST(EnvironmentCache, GivesOneEntryPerKeyOnEveryThreadAndNeverAnotherCachesEntry) {
+  TempDir tmp;
+  write_file(tmp.file("m.toml"), "units = \"m\"\nsize = [20, 10]\nobstacles = [{x=1,y=1,w=2,h=2}]\n");
+  EnvironmentCache cache;
+  const auto a = cache.get(tmp.file("m.toml"), 50, 50);
+  EXPECT_EQ(cache.get(tmp.file("m.toml"), 50, 50).get(), a.get());
+  const auto empty = cache.get("empty", 50, 50);
+  EXPECT_NE(empty.get(), a.get());
+  EXPECT_NE(cache.get("empty", 40, 50).get(), empty.get());
+  EXPECT_EQ(cache.get("empty", 50, 50).get(), empty.get());
+  EXPECT_EQ(cache.get(tmp.file("m.toml"), 50, 50).get(), a.get());
+  const Environment* on_other_thread = nullptr;
+  std::thread([&] { on_other_thread = cache.get(tmp.file("m.toml"), 50, 50).get(); }).join();
+  EXPECT_EQ(on_other_thread, a.get());
+  write_file(tmp.file("m.toml"), "units = \"m\"\nsize = [20, 10]\nobstacles = [{x=1,y=1,w=3,h=2}]\n");
+  EnvironmentCache later;
+  const auto b = later.get(tmp.file("m.toml"), 50, 50);
+  EXPECT_EQ(a->obstacles[0].x1, 3.0);
+  EXPECT_EQ(b->obstacles[0].x1, 4.0);
+  EXPECT_EQ(cache.get(tmp.file("m.toml"), 50, 50).get(), a.get());  // each cache keeps its own
+}
+
 TEST(Environment, MalformedFilesGiveErrorsNamingTheKey) {
   TempDir tmp;
   auto error = [&](const std::string& text) -> std::string {
@@ -806,6 +833,36 @@ TEST(BatchEvaluator, EveryImplementationReportsProgressMarksFinishedSlotsAndStop
     BatchObserver stopped;
     stopped.stop = &stop;
     EXPECT_EQ(e->evaluate(tuples, out, stopped), 0u) << "runs started after the stop";
+  }
+}
+
+// Threads claim runs a few at a time; stopped midway, the runs done are
+// still exactly the returned prefix, each finished, and no other.
+TEST(BatchEvaluator, AStopMidwayLeavesExactlyAPrefixFinished) {
+  EnvironmentCache cache;
+  const SweepSpec s = parse_sweep_spec(small_spec, "spec.toml");
+  std::vector<RunTuple> tuples;
+  for (int copy = 0; copy < 300; ++copy)
+    for (std::int64_t i = 0; i < s.size(); ++i) tuples.push_back(resolve_run(i, s.run(i), cache));
+  const ThreadBatchEvaluator lanes(2);
+  for (const std::int64_t stop_after : {1, 40, 500}) {
+    std::vector<RunResult> out(tuples.size());
+    ProgressCounters counters;
+    auto finished = std::make_unique<std::atomic<std::uint8_t>[]>(tuples.size());
+    std::atomic<bool> stop{false};
+    BatchObserver observer;
+    observer.progress = &counters;
+    observer.finished = finished.get();
+    observer.stop = &stop;
+    std::thread watcher([&] {
+      while (counters.done.load() < stop_after && !stop.load()) std::this_thread::yield();
+      stop.store(true);
+    });
+    const std::size_t done = lanes.evaluate(tuples, out, observer);
+    stop.store(true);
+    watcher.join();
+    EXPECT_EQ(counters.done.load(), std::int64_t(done));
+    for (std::size_t i = 0; i < tuples.size(); ++i) ASSERT_EQ(finished[i].load(), i < done ? 1 : 0) << i;
   }
 }
 
