@@ -8,22 +8,11 @@
 set -euo pipefail
 old=$1 new=$2 rounds=${3:-7}
 [[ $rounds =~ ^[1-9][0-9]*$ ]] || { echo "ROUNDS must be a positive whole number, not '$rounds'" >&2; exit 2; }
+spec=$(cd "$(dirname "$0")" && pwd)/specs/cheap.toml
 work=$(mktemp -d /tmp/chaosweep-scaling-ab.XXXXXX)
 trap 'rm -rf "$work"' EXIT
-# 1e5 runs of 5 s robot time on a 10 m map: the engine's per-run costs
-# (resolving, hashing, encoding, compressing) weigh as much as the kernel.
-cat >"$work/cheap.toml" <<'EOF'
-[fixed]
-size = 10
-sr = 2
-max_time = 5
-[axes]
-A = { start = 0.1, stop = 0.9, num = 100 }
-B = { start = 0.1, stop = 0.9, num = 100 }
-C = { start = 0.1, stop = 0.9, num = 10 }
-EOF
 wall() {  # wall seconds of one sweep
-  /usr/bin/time -f "%e" -o "$work/t" "$1" sweep "$work/cheap.toml" -o "$work/out.h5" --threads "$2" --force -q \
+  /usr/bin/time -f "%e" -o "$work/t" "$1" sweep "$spec" -o "$work/out.h5" --threads "$2" --force -q \
     --progress never >/dev/null 2>"$work/err" || { cat "$work/err" >&2; exit 3; }
   cat "$work/t"
 }
