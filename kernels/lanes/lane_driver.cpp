@@ -158,15 +158,19 @@ class LaneDriver final : public LaneSink {
     if (q_.finished) q_.finished[std::size_t(&r - results_)].store(1, std::memory_order_release);
     ++done_;
     not_ok_ += r.status != Status::ok;
-    if (done_ == 32) flush_counts();
+    counted_wall_ += r.wall_time;
+    if (done_ == 32 || counted_wall_ >= 0.05) flush_counts();
   }
 
   // The progress counters are shared by every thread: bumped once per run,
-  // their cache line went back and forth between the threads.
+  // their cache line went back and forth between the threads. They are
+  // added to every 32 runs, or sooner when the runs are slow (50 ms of
+  // their wall time), so a progress report never lags by much.
   void flush_counts() {
     if (q_.done) *q_.done += done_;
     if (q_.not_ok && not_ok_) *q_.not_ok += not_ok_;
     done_ = not_ok_ = 0;
+    counted_wall_ = 0;
   }
 
   // Puts the next run that needs integrating into lane l (or leaves it idle).
@@ -251,6 +255,7 @@ class LaneDriver final : public LaneSink {
   std::size_t held_ = 0;                       // runs in pending_
   std::size_t claimed_ = 0, claimed_end_ = 0;  // runs claimed from the queue, not yet taken
   std::int64_t done_ = 0, not_ok_ = 0;         // counted here, not yet in q_.done and q_.not_ok
+  double counted_wall_ = 0;                    // the wall time of those runs
   std::vector<std::deque<std::size_t>> pending_ = std::vector<std::deque<std::size_t>>(std::size_t(system_count));
 };
 

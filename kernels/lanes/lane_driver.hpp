@@ -26,7 +26,8 @@ void run_batch(const BatchItem* items, RunResult* results, std::size_t n, SimdTa
 // `next` (at most a lane's worth, one near the end) and its lanes take them
 // as soon as a lane frees up, so lanes idle only at the very end. `done`
 // (optional) counts finished runs and `not_ok` those not ok, for progress
-// reports (each worker adds its counts every 32 runs and when it ends).
+// reports (each worker adds its counts every 32 runs or 50 ms of runs, and
+// when it ends).
 struct RunQueue {
   const BatchItem* items;
   RunResult* results;
