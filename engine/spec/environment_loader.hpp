@@ -35,9 +35,9 @@ std::optional<std::string_view> builtin_environment(const std::string& name);
 
 // Loads each (spec, size) once; shared by all runs of a sweep.
 // Thread-safe: a sweep's threads resolve their runs through one cache. Each
-// thread remembers the last environment it was given by each cache, so runs
-// of one map in a row take no lock (a lock per run kept two threads waiting
-// on each other).
+// thread remembers its last lookup (which cache, key and entry), so runs of
+// one map in a row take no lock (a lock per run kept two threads waiting on
+// each other); that entry stays alive until the thread's next lookup.
 class EnvironmentCache {
  public:
   EnvironmentCache();
