@@ -104,7 +104,8 @@ void Race::add_initial(int n) {
       const TuneParameter& p = parameters_[i];
       // A real's outermost strata sample its range's ends themselves: CT
       // often falls all the way to an end (c = 1 or f = 6 on several Table 1
-      // maps), and no draw inside a stratum reaches it.
+      // maps), and no draw inside a stratum reaches it. (With two samples
+      // or fewer every sample would be an end: those stay drawn.)
       const int stratum = strata[i][std::size_t(k)];
       double u = (stratum + uniform()) / double(n);
       if (p.real && n > 2 && (stratum == 0 || stratum == n - 1)) u = stratum == 0 ? 0.0 : 1.0;
