@@ -20,7 +20,7 @@ class CellTracker {
     const int ni = g.cell_x(nx), nj = g.cell_y(ny);
     if (ni == ci_ && nj == cj_) return false;
     if (points) g.mark_cell(ni, nj);
-    else g.mark_segment(x, y, nx, ny);
+    else g.mark_step(ci_, cj_, ni, nj, x, y, nx, ny);
     ci_ = ni, cj_ = nj;
     return true;
   }

@@ -683,3 +683,40 @@ TEST(Supercover, EqualsDenseSamplingOnStepsShorterThanACell) {
   }
   EXPECT_GT(side_steps, 500);  // the side-neighbour case was exercised
 }
+
+// mark_step (both ends' cells known) leaves the grid as mark_segment does:
+// cells, visited count, visits, turns, and a window's distinct cells. Random
+// walks of moves up to two cells long on a map with a blocked square, some
+// with a window begun mid-walk (the start cell not yet stamped in it), some
+// starting after another cell was marked (the start cell not the one
+// marked last), so each case that must not be skipped is exercised.
+TEST(Supercover, MarkStepLeavesTheGridAsMarkSegmentDoes) {
+  Environment env = square_map(20.0);
+  env.obstacles.push_back({8, 8, 12, 12});
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 20.0), step(-2.5, 2.5);
+  for (int walk = 0; walk < 200; ++walk) {
+    CoverageGrid a(env, 1.0), b(env, 1.0);
+    double x = u(rng), y = u(rng);
+    a.mark_point(x, y);
+    b.mark_point(x, y);
+    if (walk % 3 == 1) {  // another cell marked last, in both
+      const double ox = u(rng), oy = u(rng);
+      a.mark_point(ox, oy);
+      b.mark_point(ox, oy);
+    }
+    for (int m = 0; m < 400; ++m) {
+      if (walk % 2 == 0 && m == 200) a.begin_window(), b.begin_window();
+      const double nx = std::clamp(x + step(rng), 0.0, 20.0), ny = std::clamp(y + step(rng), 0.0, 20.0);
+      const int i = a.cell_x(x), j = a.cell_y(y), i1 = a.cell_x(nx), j1 = a.cell_y(ny);
+      a.mark_segment(x, y, nx, ny);
+      if (i1 != i || j1 != j) b.mark_step(i, j, i1, j1, x, y, nx, ny);
+      x = nx, y = ny;
+    }
+    ASSERT_EQ(marked_cells(a), marked_cells(b)) << walk;
+    ASSERT_EQ(a.visited_cells(), b.visited_cells()) << walk;
+    ASSERT_EQ(a.visits(), b.visits()) << walk;
+    for (int k = 0; k < 4; ++k) ASSERT_EQ(a.turns()[k], b.turns()[k]) << walk;
+    ASSERT_EQ(a.window_distinct(), b.window_distinct()) << walk;
+  }
+}
