@@ -2,8 +2,10 @@
 // `chaosweep table tune`: per case of a tune's result file (chaosweep tune),
 // the configuration it chose, its validated median CT with a bootstrap
 // interval, the race runs it spent; beside it the validated best of a grid
-// search (the tune's config 0, when `tune --grid` validated one), and with
-// a grid file the grid's best on its own seeds and the runs it took.
+// search (the tune's config 0, when `tune --grid` validated one) with a
+// paired Wilcoxon signed-rank test of the two on the validation seeds they
+// share, and with a grid file the grid's best on its own seeds and the runs
+// it took.
 #include <string>
 #include <vector>
 
@@ -26,7 +28,7 @@ GridBest grid_best(const ResultSet& grid, const std::string& label, const std::v
 
 struct TuneTableOptions {
   std::vector<std::string> params;  // the columns that make a configuration (empty: those that vary per case)
-  double level = 0.95;              // of the bootstrap interval
+  double level = 0.95;              // of the bootstrap interval and the paired test
   int resamples = 2000;
 };
 

@@ -18,6 +18,7 @@
 #include "analysis/replay.hpp"
 #include "analysis/result_set.hpp"
 #include "analysis/tables.hpp"
+#include "analysis/tune_table.hpp"
 #include "engine/store/h5_store.hpp"
 #include "tests/support/test_util.hpp"
 
@@ -902,6 +903,71 @@ TEST(Tables, LeaderboardRanksPlannersPerMapWithSharedTiesAndAMeanRank) {
   EXPECT_NE(table_text("leaderboard", rs, by_env, TableFormat::md).find("| B 50 m, SR 1 | 1 | B |"), std::string::npos);
   const ResultSet no_sr = ResultSet::from_columns({{"coverage_time", {1}}}, {{"status", {"ok"}}, {"env", {"A"}}});
   EXPECT_THROW(table_text("leaderboard", no_sr, TableOptions{}, TableFormat::md), AnalysisError);
+}
+
+// table tune beside a grid's validated best: per case the paired Wilcoxon
+// test on the validation seeds the two share. Case "a": the tuner's choice
+// is faster on every one of 20 seeds; "b": the two alternate, each ahead on
+// half the seeds by the same amounts; "c": the grid's is faster on every
+// seed, and one of the tuner's runs missed the target. Rows are in no
+// particular seed order: the test pairs by seed, not by position.
+TEST(Tables, TuneTablePairsTheTunersChoiceWithTheGridsBestOnTheirSeeds) {
+  std::map<std::string, std::vector<double>> num;
+  std::vector<std::string> label, status;
+  const auto add = [&](const std::string& l, double round, double config, double seed, double ct, bool ok = true) {
+    label.push_back(l);
+    status.push_back(ok ? "ok" : "timeout");
+    num["run_id"].push_back(double(label.size()));
+    num["race_round"].push_back(round);
+    num["config_id"].push_back(config);
+    num["seed"].push_back(seed);
+    num["coverage_time"].push_back(ok ? ct : std::numeric_limits<double>::quiet_NaN());
+    num["c"].push_back(config == 2 ? 0.5 : 0.25);
+  };
+  for (const char* l : {"a", "b", "c"}) {
+    add(l, 1, 1, 0, 100);
+    add(l, 1, 2, 0, 100);
+    for (int k = 0; k < 20; ++k) {
+      const double seed = 1000 + (k * 7) % 20, base = 1000 + 10 * k;
+      const std::string c(l);
+      const double mine = c == "a" ? base : c == "b" ? base + (k % 2 ? 50 : -50) : base + 100;
+      add(l, 0, 1, seed, mine, !(c == "c" && k == 3));
+      add(l, 0, 0, 1000 + (k * 13) % 20, 0);  // placeholder, set below by seed
+    }
+  }
+  // The grid's rows: CT by seed, so that pairing by seed (not by row) is what
+  // makes the differences above.
+  for (std::size_t r = 0; r < label.size(); ++r)
+    if (num["race_round"][r] == 0 && num["config_id"][r] == 0) {
+      const int k = [&] {
+        for (int j = 0; j < 20; ++j)
+          if (1000 + (j * 7) % 20 == num["seed"][r]) return j;
+        return -1;
+      }();
+      ASSERT_GE(k, 0);
+      num["coverage_time"][r] = label[r] == "b" ? 1000 + 10 * k : 1000 + 10 * k + (label[r] == "a" ? 30 : 0);
+    }
+  const ResultSet rs = ResultSet::from_columns(num, {{"label", label}, {"status", status}});
+  std::ostringstream md;
+  tune_table(rs, nullptr, TuneTableOptions{}).write(md, TableFormat::md);
+  const std::string out = md.str();
+  const auto row_of = [&](const std::string& l) {
+    const std::size_t at = out.find("\n| " + l + " |");
+    return at == std::string::npos ? std::string() : out.substr(at + 1, out.find('\n', at + 1) - at - 1);
+  };
+  EXPECT_NE(row_of("a").find("| tuner better (p "), std::string::npos) << out;
+  EXPECT_NE(row_of("b").find("| no difference (p "), std::string::npos) << out;
+  EXPECT_NE(row_of("c").find("| grid better (p "), std::string::npos) << out;
+  EXPECT_NE(out.find("tuner better in 1, grid better in 1, no difference in 1 of 3 cases"), std::string::npos) << out;
+  // Validation rows on other seeds than the grid's cannot be paired: "-".
+  std::map<std::string, std::vector<double>> moved = num;
+  for (std::size_t r = 0; r < label.size(); ++r)
+    if (label[r] == "a" && moved["race_round"][r] == 0 && moved["config_id"][r] == 1) moved["seed"][r] += 100;
+  std::ostringstream md2;
+  tune_table(ResultSet::from_columns(moved, {{"label", label}, {"status", status}}), nullptr, TuneTableOptions{})
+      .write(md2, TableFormat::md);
+  EXPECT_NE(md2.str().find("| yes | - |"), std::string::npos) << md2.str();
+  EXPECT_NE(md2.str().find("no difference in 1 of 2 cases"), std::string::npos) << md2.str();
 }
 
 }  // namespace
