@@ -909,8 +909,7 @@ TEST(Tables, LeaderboardRanksPlannersPerMapWithSharedTiesAndAMeanRank) {
 // test on the validation seeds the two share. Case "a": the tuner's choice
 // is faster on every one of 20 seeds; "b": the two alternate, each ahead on
 // half the seeds by the same amounts; "c": the grid's is faster on every
-// seed, and one of the tuner's runs missed the target. Rows are in no
-// particular seed order: the test pairs by seed, not by position.
+// seed, and one of the tuner's runs missed the target.
 TEST(Tables, TuneTablePairsTheTunersChoiceWithTheGridsBestOnTheirSeeds) {
   std::map<std::string, std::vector<double>> num;
   std::vector<std::string> label, status;
@@ -924,29 +923,19 @@ TEST(Tables, TuneTablePairsTheTunersChoiceWithTheGridsBestOnTheirSeeds) {
     num["coverage_time"].push_back(ok ? ct : std::numeric_limits<double>::quiet_NaN());
     num["c"].push_back(config == 2 ? 0.5 : 0.25);
   };
-  for (const char* l : {"a", "b", "c"}) {
-    add(l, 1, 1, 0, 100);
+  for (const std::string l : {"a", "b", "c"}) {
+    add(l, 1, 1, 0, 100);  // two race rows
     add(l, 1, 2, 0, 100);
+    // Validation on seeds 1000-1019, the grid's CT 1000 + 10 k on seed
+    // 1000 + k; the grid's rows in reverse order, so that only pairing by
+    // seed lines the two up.
     for (int k = 0; k < 20; ++k) {
-      const double seed = 1000 + (k * 7) % 20, base = 1000 + 10 * k;
-      const std::string c(l);
-      const double mine = c == "a" ? base : c == "b" ? base + (k % 2 ? 50 : -50) : base + 100;
-      add(l, 0, 1, seed, mine, !(c == "c" && k == 3));
-      add(l, 0, 0, 1000 + (k * 13) % 20, 0);  // placeholder, set below by seed
+      const double grid = 1000 + 10 * k;
+      const double mine = l == "a" ? grid - 30 : l == "b" ? grid + (k % 2 ? 50 : -50) : grid + 100;
+      add(l, 0, 1, 1000 + k, mine, !(l == "c" && k == 3));
     }
+    for (int k = 19; k >= 0; --k) add(l, 0, 0, 1000 + k, 1000 + 10 * k);
   }
-  // The grid's rows: CT by seed, so that pairing by seed (not by row) is what
-  // makes the differences above.
-  for (std::size_t r = 0; r < label.size(); ++r)
-    if (num["race_round"][r] == 0 && num["config_id"][r] == 0) {
-      const int k = [&] {
-        for (int j = 0; j < 20; ++j)
-          if (1000 + (j * 7) % 20 == num["seed"][r]) return j;
-        return -1;
-      }();
-      ASSERT_GE(k, 0);
-      num["coverage_time"][r] = label[r] == "b" ? 1000 + 10 * k : 1000 + 10 * k + (label[r] == "a" ? 30 : 0);
-    }
   const ResultSet rs = ResultSet::from_columns(num, {{"label", label}, {"status", status}});
   std::ostringstream md;
   tune_table(rs, nullptr, TuneTableOptions{}).write(md, TableFormat::md);
