@@ -71,48 +71,24 @@ std::string interval_text(const Interval& i) {
 Cell ct_cell(double v) { return std::isinf(v) ? Cell("inf (missed)") : sig_cell(v, 5); }
 
 // The tuner's choice against the grid's best on the validation seeds they
-// share (both run on the same ones): the paired Wilcoxon signed-rank test,
-// as the race's own test pairs on the seed. Where the two medians are near
-// equal, "at or below" alone is a coin toss; this says whether a difference
-// is more than the seeds' noise.
-enum class Paired { none, same, better, worse };
-struct PairedTest {
-  Paired verdict = Paired::none;
-  double p = 1;
-};
-
-PairedTest paired_test(const ResultSet& rs, const std::vector<std::size_t>& mine, const std::vector<std::size_t>& other,
-                       double level) {
-  if (mine.empty() || mine.size() != other.size() || !rs.has("seed")) return {};
+// share (both run on the same ones): the p-value of the paired Wilcoxon
+// signed-rank test, as the race's own test pairs on the seed; NaN when the
+// two did not run on the same seeds. Where the two medians are near equal,
+// "at or below" alone is a coin toss; this says whether a difference is
+// more than the seeds' noise.
+double paired_p(const ResultSet& rs, const std::vector<std::size_t>& mine, const std::vector<std::size_t>& other) {
+  constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  if (mine.empty() || mine.size() != other.size() || !rs.has("seed")) return none;
   const auto& seed = rs.num("seed");
   std::map<double, std::size_t> at;
   for (std::size_t r : other) at[seed[r]] = r;
   std::vector<std::size_t> paired;
   for (std::size_t r : mine) {
     const auto it = at.find(seed[r]);
-    if (it == at.end()) return {};  // not the same seeds: nothing to pair
+    if (it == at.end()) return none;
     paired.push_back(it->second);
   }
-  const std::vector<double> a = costs(rs, mine), b = costs(rs, paired);
-  PairedTest t;
-  t.p = wilcoxon_signed_rank_p(a, b);
-  if (!(t.p < 1 - level)) t.verdict = Paired::same;
-  else t.verdict = median(a) <= median(b) ? Paired::better : Paired::worse;
-  return t;
-}
-
-std::string paired_text(const PairedTest& t) {
-  switch (t.verdict) {
-    case Paired::none:
-      return "-";
-    case Paired::same:
-      return "no difference (p " + fmt_sig(t.p, 3) + ")";
-    case Paired::better:
-      return "tuner better (p " + fmt_sig(t.p, 3) + ")";
-    case Paired::worse:
-      return "grid better (p " + fmt_sig(t.p, 3) + ")";
-  }
-  return "-";
+  return wilcoxon_signed_rank_p(costs(rs, mine), costs(rs, paired));
 }
 
 }  // namespace
@@ -185,7 +161,7 @@ TextTable tune_table(const ResultSet& rs, const ResultSet* grid, const TuneTable
     t.header.insert(t.header.end(), {"grid's best, validated", "interval", "tuner <= grid", "paired test"});
   if (grid) t.header.insert(t.header.end(), {"grid's best", "its CT (grid seeds)", "grid runs"});
   std::size_t at_or_below = 0, compared = 0, race_runs = 0, grid_runs = 0;
-  std::map<Paired, std::size_t> tested;
+  std::size_t tuner_better = 0, grid_better = 0, no_difference = 0;
   for (const std::string& l : cases) {
     const std::vector<std::size_t>& rows = race[l];
     race_runs += rows.size();
@@ -214,9 +190,19 @@ TextTable tune_table(const ResultSet& rs, const ResultSet* grid, const TuneTable
       row.push_back(g.empty() ? Cell("-") : ct_cell(other.median));
       row.push_back(Cell(interval_text(other.interval)));
       row.push_back(Cell(verdict));
-      const PairedTest pt = paired_test(rs, v, g, opt.level);
-      ++tested[pt.verdict];
-      row.push_back(Cell(paired_text(pt)));
+      const double p = paired_p(rs, v, g);
+      std::string paired = "-";
+      if (!std::isnan(p)) {
+        const bool differ = p < 1 - opt.level, mine_lower = mine.median <= other.median;
+        if (!differ) ++no_difference;
+        else if (mine_lower) ++tuner_better;
+        else ++grid_better;
+        paired = std::string(!differ      ? "no difference"
+                             : mine_lower ? "tuner better"
+                                          : "grid better") +
+                 " (p " + fmt_sig(p, 3) + ")";
+      }
+      row.push_back(Cell(paired));
     }
     if (grid) {
       const GridBest b = grid_best(*grid, l, params);
@@ -234,15 +220,15 @@ TextTable tune_table(const ResultSet& rs, const ResultSet* grid, const TuneTable
       "that missed the target counting as infinitely long; interval: percentile bootstrap of that "
       "median at " +
       fmt_sig(100 * opt.level, 3) + "% (" + std::to_string(opt.resamples) + " resamples)");
-  if (has_beside)
+  if (has_beside) {
     t.notes.push_back("tuner at or below the grid's validated best in " + std::to_string(at_or_below) + " of " +
                       std::to_string(compared) + " cases");
-  if (has_beside)
     t.notes.push_back("paired test: Wilcoxon signed-rank of the two on the validation seeds they share, at " +
-                      fmt_sig(100 * opt.level, 3) + "%: tuner better in " + std::to_string(tested[Paired::better]) +
-                      ", grid better in " + std::to_string(tested[Paired::worse]) + ", no difference in " +
-                      std::to_string(tested[Paired::same]) + " of " +
-                      std::to_string(tested[Paired::better] + tested[Paired::worse] + tested[Paired::same]) + " cases");
+                      fmt_sig(100 * opt.level, 3) + "%: tuner better in " + std::to_string(tuner_better) +
+                      ", grid better in " + std::to_string(grid_better) + ", no difference in " +
+                      std::to_string(no_difference) + " of " +
+                      std::to_string(tuner_better + grid_better + no_difference) + " cases");
+  }
   std::string spent = "race runs: " + std::to_string(race_runs);
   if (grid && grid_runs > 0)
     spent += " (" + fmt_sig(100.0 * double(race_runs) / double(grid_runs), 3) + "% of the grid's " +

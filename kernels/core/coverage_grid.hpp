@@ -83,16 +83,14 @@ class CoverageGrid {
   void mark_segment(double x0, double y0, double x1, double y1) {
     const int i = cell_x(x0), j = cell_y(y0);
     const int i1 = cell_x(x1), j1 = cell_y(y1);
-    mark_cell(i, j);
-    const int di = i1 - i, dj = j1 - j;
-    if ((di == 0 && (dj == 1 || dj == -1)) || (dj == 0 && (di == 1 || di == -1))) mark_cell(i1, j1);
-    else if (di != 0 || dj != 0) mark_crossing(x0, y0, x1, y1);
+    if (i1 == i && j1 == j) mark_cell(i, j);
+    else mark_step(i, j, i1, j1, x0, y0, x1, y1);
   }
   // mark_segment for a caller that knows both ends' cells: (x0, y0) in
   // (i, j), (x1, y1) in another cell (i1, j1). Marking the start cell again
   // changes nothing when it is the cell marked last and no window counts
-  // touches, the common case of a walk from cell to cell, so that is skipped
-  // with the four index computations.
+  // touches (the common case of a walk from cell to cell), so that mark is
+  // skipped then.
   void mark_step(int i, int j, int i1, int j1, double x0, double y0, double x1, double y1) {
     if (long(j) * nx_ + i != current_ || !stamp_.empty()) mark_cell(i, j);
     const int di = i1 - i, dj = j1 - j;
