@@ -1,4 +1,6 @@
 // chaosweep: batch experiments for chaotic coverage path planners.
+#include <malloc.h>
+
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -11,6 +13,13 @@
 int main(int argc, char** argv) {
   using namespace chaosweep;
   skip_hdf5_exit_handler();
+  // HDF5 allocates and frees a buffer of about a chunk (1 MiB) for each
+  // chunk it converts, fills or filters; glibc gave each back to the kernel
+  // (an mmap of its own, or a trim of the heap's top), so the next one
+  // page-faulted in again: memory up to 32 MiB a block comes from the heap,
+  // and up to 64 MiB free at its top stays (issue 20, BENCHMARKS.md).
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
   CLI::App app{"chaosweep: high-throughput sweeps of chaotic robot coverage planners"};
   app.require_subcommand(0, 1);
   bool version = false;
