@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kernels/core/boundary.hpp"
+#include "kernels/math/inline_hypot.hpp"
 #include "kernels/planners/arnold/planner_run.hpp"
 
 namespace chaosweep {
@@ -62,7 +63,7 @@ bool PlannerRun::transit_to(Point goal) {
     ++r_.transit_points;
     // The mapped points are not v dt_c apart (Eq. 6 adds the correction Q):
     // dt_c each is Algorithm 4's clock, distance / v the robot's speed.
-    const double dt = p_.transit_time == TransitTime::points ? p_.dt_c : std::hypot(x - from.x, y - from.y) / p_.v;
+    const double dt = p_.transit_time == TransitTime::points ? p_.dt_c : inline_hypot(x - from.x, y - from.y) / p_.v;
     if (after_move(dt, SegmentKind::transit)) return false;
     if (!blocked) continue;
     ++r_.transit_attempts;

@@ -2,10 +2,12 @@
 
 #include <cmath>
 
+#include "kernels/math/inline_hypot.hpp"
+
 namespace chaosweep {
 
 std::vector<Point> logistic_positions(Point start, Point goal, double v, double dt_c, LogisticMap& map) {
-  const double d = std::hypot(goal.x - start.x, goal.y - start.y);
+  const double d = inline_hypot(goal.x - start.x, goal.y - start.y);
   const std::size_t m = std::max<std::size_t>(2, std::size_t(std::floor(d / (v * dt_c))) + 1);
   const bool rightwards = goal.x >= start.x;
   std::vector<Point> p(m);

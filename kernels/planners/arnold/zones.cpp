@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "kernels/core/setup_cache.hpp"
+#include "kernels/math/inline_hypot.hpp"
 
 namespace chaosweep {
 
@@ -31,7 +32,7 @@ Zones::Zones(const Environment& env, const CoverageGrid& grid, int zx, int zy, b
       ZoneInfo& z = base_[std::size_t(k)];
       z.free_cells += grid.at(i, j) != CoverageGrid::blocked;
       if (!free_goal || grid.at(i, j) == CoverageGrid::blocked || !clear(cx, cy)) continue;
-      const double d = std::hypot(cx - z.mid_x, cy - z.mid_y);
+      const double d = inline_hypot(cx - z.mid_x, cy - z.mid_y);
       if (d < best[std::size_t(k)]) {
         best[std::size_t(k)] = d;
         z.goal_x = cx;
@@ -80,7 +81,7 @@ std::vector<ZoneInfo> zone_order(std::vector<ZoneInfo> zones, int robot_zone, do
   keys.reserve(zones.size());
   for (std::size_t k = 0; k < zones.size(); ++k) {
     const ZoneInfo& z = zones[k];
-    const double d = std::hypot(z.goal_x - x, z.goal_y - y);
+    const double d = inline_hypot(z.goal_x - x, z.goal_y - y);
     keys.push_back({distance_first ? std::tuple{d, z.density(), z.index} : std::tuple{z.density(), d, z.index}, k});
   }
   std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

@@ -5,6 +5,7 @@
 
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/run_end.hpp"
+#include "kernels/math/inline_hypot.hpp"
 
 namespace chaosweep {
 
@@ -38,7 +39,7 @@ void BaselineRobot::move(double nx, double ny, double dt, SegmentKind kind) {
 }
 
 void BaselineRobot::walk_to(double gx, double gy, SegmentKind kind) {
-  const double dist = std::hypot(gx - x_, gy - y_);
+  const double dist = inline_hypot(gx - x_, gy - y_);
   if (ended_ || dist == 0) return;
   // Equal moves (dist / moves up to rounding), each charged that length:
   // one hypot per walk. Positions are interpolated from the walk's start,

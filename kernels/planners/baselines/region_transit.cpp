@@ -7,13 +7,15 @@
 #include <queue>
 #include <utility>
 
+#include "kernels/math/inline_hypot.hpp"
+
 namespace chaosweep {
 
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-double dist(Point a, Point b) { return std::hypot(b.x - a.x, b.y - a.y); }
+double dist(Point a, Point b) { return inline_hypot(b.x - a.x, b.y - a.y); }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
 #include "kernels/core/run_end.hpp"
+#include "kernels/math/inline_hypot.hpp"
 #include "kernels/systems/chebyshev_map.hpp"
 
 namespace chaosweep {
@@ -119,7 +120,7 @@ class ChebyshevRun {
   // at speed v: one hypot per walk, not per move (a hypot per move was most
   // of the planner's time; the clock differs from it by a few ulps).
   void walk_to(double gx, double gy, SegmentKind kind) {
-    const double dist = std::hypot(gx - px_, gy - py_);
+    const double dist = inline_hypot(gx - px_, gy - py_);
     const long moves = std::max<long>(1, long(std::ceil(dist / p_.step)));
     const double move_time = dist / double(moves) / p_.v;
     const double sx = px_, sy = py_, budget = budget_;

@@ -9,6 +9,7 @@
 
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/core/environment.hpp"
+#include "kernels/math/inline_hypot.hpp"
 #include "kernels/planners/contraction/trig3_fast.hpp"
 #include "kernels/systems/arnold_flow.hpp"
 
@@ -266,7 +267,7 @@ CompleteCoverage complete_coverage(const ContractionRobot& robot, const std::vec
       const Candidate& c = candidates[i];
       if (std::ptrdiff_t(i) == previous && candidates.size() > 1) continue;
       if (collapses(c.mapped_start.x, end.x, wp.w) || collapses(c.mapped_start.y, end.y, wp.h)) continue;
-      const double d = std::hypot(c.mapped_start.x - end.x, c.mapped_start.y - end.y);
+      const double d = inline_hypot(c.mapped_start.x - end.x, c.mapped_start.y - end.y);
       if (d < best_d) {
         best_d = d;
         best = std::ptrdiff_t(i);

@@ -5,6 +5,7 @@
 #include "kernels/core/chaotic_spread.hpp"
 #include "kernels/core/metrics.hpp"
 #include "kernels/core/param_table.hpp"
+#include "kernels/math/inline_hypot.hpp"
 #include "kernels/planners/contraction/contraction.hpp"
 
 namespace chaosweep {
@@ -74,7 +75,7 @@ void run_contraction(const RunParams& p, const Environment& env, CoverageGrid& g
     if (i == 0 || p.sampling == chaosweep::Sampling::points) grid.mark_point(q.x, q.y);
     else {
       grid.mark_segment(path[i - 1].x, path[i - 1].y, q.x, q.y);
-      t += std::hypot(q.x - path[i - 1].x, q.y - path[i - 1].y) / p.v;
+      t += inline_hypot(q.x - path[i - 1].x, q.y - path[i - 1].y) / p.v;
     }
     grid.note_time(t);
     if (trace) trace->point({t, q.x, q.y, i == 0 ? SegmentKind::start : SegmentKind::arnold, p.ds_index});
