@@ -5,10 +5,12 @@
 // an immutable object, a pure function of its key, so which thread built it
 // and in what order the runs came never shows in a result.
 #include <cstdint>
+#include <list>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <vector>
+#include <string_view>
+#include <unordered_map>
 
 #include "kernels/core/environment.hpp"
 
@@ -52,14 +54,15 @@ class SetupCache {
   std::shared_ptr<const T> get(const SetupKey& key, std::size_t cost, Make&& make) {
     {
       const std::lock_guard lock(mutex_);
-      if (Entry* e = find(key.bytes())) return touch(*e);
+      if (auto hit = use(key.bytes())) return hit;
     }
     std::shared_ptr<const T> value = make();
     if (cost > max_cost_) return value;
     const std::lock_guard lock(mutex_);
-    if (Entry* e = find(key.bytes())) return touch(*e);
+    if (auto hit = use(key.bytes())) return hit;
     while (!entries_.empty() && cost_ + cost > max_cost_) evict_oldest();
-    entries_.push_back({key.bytes(), value, cost, ++clock_});
+    entries_.push_front({key.bytes(), value, cost});
+    index_.emplace(entries_.front().key, entries_.begin());
     cost_ += cost;
     ++builds_;
     return value;
@@ -80,30 +83,27 @@ class SetupCache {
     std::string key;
     std::shared_ptr<const T> value;
     std::size_t cost;
-    std::uint64_t used;
   };
 
-  Entry* find(const std::string& key) {
-    for (Entry& e : entries_)
-      if (e.key == key) return &e;
-    return nullptr;
-  }
-  std::shared_ptr<const T> touch(Entry& e) {
-    e.used = ++clock_;
-    return e.value;
+  // Most recently used first, found by key in constant time: a Chebyshev
+  // orbit's blocks are thousands of entries, and a sweep whose orbits never
+  // repeat evicts one for every block it adds.
+  std::shared_ptr<const T> use(const std::string& key) {  // null: none
+    const auto it = index_.find(key);
+    if (it == index_.end()) return nullptr;
+    entries_.splice(entries_.begin(), entries_, it->second);
+    return it->second->value;
   }
   void evict_oldest() {
-    std::size_t oldest = 0;
-    for (std::size_t k = 1; k < entries_.size(); ++k)
-      if (entries_[k].used < entries_[oldest].used) oldest = k;
-    cost_ -= entries_[oldest].cost;
-    entries_.erase(entries_.begin() + std::ptrdiff_t(oldest));
+    cost_ -= entries_.back().cost;
+    index_.erase(entries_.back().key);
+    entries_.pop_back();
   }
 
   mutable std::mutex mutex_;
-  std::vector<Entry> entries_;
+  std::list<Entry> entries_;
+  std::unordered_map<std::string_view, typename std::list<Entry>::iterator> index_;  // views of entries_' keys
   std::size_t max_cost_, cost_ = 0, builds_ = 0;
-  std::uint64_t clock_ = 0;
 };
 
 }  // namespace chaosweep

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "kernels/planners/chebyshev/chebyshev_analysis.hpp"
+#include "kernels/planners/chebyshev/chebyshev_orbit.hpp"
 #include "kernels/systems/chebyshev_map.hpp"
 
 using namespace chaosweep;
@@ -141,5 +144,29 @@ TEST(ChebyshevMap, StepAtAndBeyondTheEndsStaysFinite) {
       EXPECT_TRUE(std::isfinite(u)) << x;
       EXPECT_GE(u, cheb_lo(t));
       EXPECT_LE(u, cheb_hi(t));
+    }
+}
+
+// The orbit a run draws, its own first iterates then the shared blocks,
+// is the map iterated and transformed one value at a time, across several
+// blocks, for runs drawing the same orbit in turns (the second finds the
+// first's blocks) and for an orbit that lands on the fixed point 1.
+TEST(ChebyshevOrbit, DrawsTheMapsIteratesAndTheirTransformsWhoeverBuiltTheBlocks) {
+  const int draws = 20000;  // the own iterates and blocks of 64, 128, ..., 16384
+  for (const ChebTransform t : {ChebTransform::none, ChebTransform::arcsine, ChebTransform::arccosine})
+    for (const auto& [k, x0] : std::vector<std::pair<int, double>>{{6, 0.123456789}, {3, -0.7}, {6, 0.5}}) {
+      ChebyshevOrbit first(k, x0, t), second(k, x0, t);
+      const double lo = cheb_lo(t), span = cheb_hi(t) - lo;
+      double x = x0;
+      for (int n = 1; n <= draws; ++n) {
+        x = chebyshev_step(x, k);
+        const double u = (cheb_transform(x, t) - lo) / span;
+        ChebyshevOrbit& orbit = n % 3 == 0 ? second : first;  // out of step: one builds, the other reads
+        const ChebyshevOrbit::Value a = orbit.next(), b = (n % 3 == 0 ? first : second).next();
+        ASSERT_EQ(a.x, x) << "k " << k << ", x0 " << x0 << ", n " << n;
+        ASSERT_EQ(a.u, u) << "k " << k << ", x0 " << x0 << ", n " << n;
+        ASSERT_EQ(b.x, x) << "k " << k << ", x0 " << x0 << ", n " << n;
+        ASSERT_EQ(b.u, u) << "k " << k << ", x0 " << x0 << ", n " << n;
+      }
     }
 }

@@ -10,7 +10,7 @@
 #include "kernels/core/param_table.hpp"
 #include "kernels/core/run_end.hpp"
 #include "kernels/math/inline_hypot.hpp"
-#include "kernels/systems/chebyshev_map.hpp"
+#include "kernels/planners/chebyshev/chebyshev_orbit.hpp"
 
 namespace chaosweep {
 
@@ -32,6 +32,8 @@ class ChebyshevRun {
         budget_(run_budget(p, r.t_opt)),
         x_(p.cheb_x0),
         y_(p.cheb_y0),
+        x_orbit_(p.cheb_k, p.cheb_x0, p.cheb_transform),
+        y_orbit_(p.cheb_k, p.cheb_y0, p.cheb_transform),
         px_(p.start_x),
         py_(p.start_y) {
     grid_.mark_point(px_, py_);
@@ -89,12 +91,10 @@ class ChebyshevRun {
   // ends as diverged, like the Logistic planner's.
   std::pair<double, double> next_subgoal(const Rect& box) {
     const double px = x_, py = y_;
-    x_ = chebyshev_step(x_, p_.cheb_k);
-    y_ = chebyshev_step(y_, p_.cheb_k);
+    const auto [x, u] = x_orbit_.next();
+    const auto [y, w] = y_orbit_.next();
+    x_ = x, y_ = y;
     if (x_ == px || y_ == py) end(Status::diverged, "Chebyshev orbit collapsed onto a fixed point");
-    const double lo = cheb_lo(p_.cheb_transform), span = cheb_hi(p_.cheb_transform) - lo;
-    const double u = (cheb_transform(x_, p_.cheb_transform) - lo) / span;
-    const double w = (cheb_transform(y_, p_.cheb_transform) - lo) / span;
     return {box.x0 + u * (box.x1 - box.x0), box.y0 + w * (box.y1 - box.y0)};
   }
 
@@ -160,7 +160,8 @@ class ChebyshevRun {
   RectDecomposition d_;
   long needed_;
   double budget_;
-  double x_, y_;    // the two maps' states (untransformed)
+  double x_, y_;  // the two maps' states (untransformed)
+  ChebyshevOrbit x_orbit_, y_orbit_;
   double px_, py_;  // robot position
   double t_ = 0;
   bool ended_ = false;
