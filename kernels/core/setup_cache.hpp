@@ -1,7 +1,8 @@
 #pragma once
-// Per-map setup that the runs of a sweep share (MapZoning's zones, the cells
-// clear of Eq. 8), built once per distinct key instead of once per run: a
-// 200 m SR 1 map took 1.1-1.5 ms of setup per run (issue 20). An entry is
+// Setup that the runs of a sweep share (per map MapZoning's zones and the
+// cells clear of Eq. 8; the Chebyshev maps' orbits), built once per distinct
+// key instead of once per run: a 200 m SR 1 map took 1.1-1.5 ms of setup per
+// run (issue 20). An entry is
 // an immutable object, a pure function of its key, so which thread built it
 // and in what order the runs came never shows in a result.
 #include <cstdint>
