@@ -61,12 +61,21 @@ class SetupCache {
     if (cost > max_cost_) return value;
     const std::lock_guard lock(mutex_);
     if (auto hit = use(key.bytes())) return hit;
-    while (!entries_.empty() && cost_ + cost > max_cost_) evict_oldest();
-    entries_.push_front({key.bytes(), value, cost});
-    index_.emplace(entries_.front().key, entries_.begin());
-    cost_ += cost;
-    ++builds_;
+    insert(key, cost, value);
     return value;
+  }
+
+  // Stores `value` for `key` in place of the entry it has (a placeholder
+  // that get() stored), or as a new one.
+  void replace(const SetupKey& key, std::size_t cost, std::shared_ptr<const T> value) {
+    const std::lock_guard lock(mutex_);
+    if (const auto it = index_.find(key.bytes()); it != index_.end()) {
+      const auto entry = it->second;
+      cost_ -= entry->cost;
+      index_.erase(it);  // before the key it views
+      entries_.erase(entry);
+    }
+    if (cost <= max_cost_) insert(key, cost, std::move(value));
   }
 
   // For tests: entries held, and entries ever stored.
@@ -94,6 +103,13 @@ class SetupCache {
     if (it == index_.end()) return nullptr;
     entries_.splice(entries_.begin(), entries_, it->second);
     return it->second->value;
+  }
+  void insert(const SetupKey& key, std::size_t cost, std::shared_ptr<const T> value) {
+    while (!entries_.empty() && cost_ + cost > max_cost_) evict_oldest();
+    entries_.push_front({key.bytes(), std::move(value), cost});
+    index_.emplace(entries_.front().key, entries_.begin());
+    cost_ += cost;
+    ++builds_;
   }
   void evict_oldest() {
     cost_ -= entries_.back().cost;

@@ -155,18 +155,29 @@ TEST(ChebyshevOrbit, DrawsTheMapsIteratesAndTheirTransformsWhoeverBuiltTheBlocks
   const int draws = 20000;  // the own iterates and blocks of 64, 128, ..., 16384
   for (const ChebTransform t : {ChebTransform::none, ChebTransform::arcsine, ChebTransform::arccosine})
     for (const auto& [k, x0] : std::vector<std::pair<int, double>>{{6, 0.123456789}, {3, -0.7}, {6, 0.5}}) {
-      ChebyshevOrbit first(k, x0, t), second(k, x0, t);
       const double lo = cheb_lo(t), span = cheb_hi(t) - lo;
+      std::vector<ChebyshevOrbit::Value> expected;
       double x = x0;
       for (int n = 1; n <= draws; ++n) {
         x = chebyshev_step(x, k);
-        const double u = (cheb_transform(x, t) - lo) / span;
-        ChebyshevOrbit& orbit = n % 3 == 0 ? second : first;  // out of step: one builds, the other reads
-        const ChebyshevOrbit::Value a = orbit.next(), b = (n % 3 == 0 ? first : second).next();
-        ASSERT_EQ(a.x, x) << "k " << k << ", x0 " << x0 << ", n " << n;
-        ASSERT_EQ(a.u, u) << "k " << k << ", x0 " << x0 << ", n " << n;
-        ASSERT_EQ(b.x, x) << "k " << k << ", x0 " << x0 << ", n " << n;
-        ASSERT_EQ(b.u, u) << "k " << k << ", x0 " << x0 << ", n " << n;
+        expected.push_back({x, (cheb_transform(x, t) - lo) / span});
+      }
+      // Two runs out of step (the one first at a block leaves a mark and
+      // draws on, the other builds it), then a third that reads the blocks.
+      ChebyshevOrbit first(k, x0, t), second(k, x0, t), third(k, x0, t);
+      for (int n = 0; n < draws; ++n) {
+        ChebyshevOrbit& ahead = n % 3 == 0 ? second : first;
+        ChebyshevOrbit& behind = n % 3 == 0 ? first : second;
+        for (ChebyshevOrbit* o : {&ahead, &behind}) {
+          const ChebyshevOrbit::Value v = o->next();
+          ASSERT_EQ(v.x, expected[std::size_t(n)].x) << "k " << k << ", x0 " << x0 << ", n " << n + 1;
+          ASSERT_EQ(v.u, expected[std::size_t(n)].u) << "k " << k << ", x0 " << x0 << ", n " << n + 1;
+        }
+      }
+      for (int n = 0; n < draws; ++n) {
+        const ChebyshevOrbit::Value v = third.next();
+        ASSERT_EQ(v.x, expected[std::size_t(n)].x) << "k " << k << ", x0 " << x0 << ", n " << n + 1 << " (third)";
+        ASSERT_EQ(v.u, expected[std::size_t(n)].u) << "k " << k << ", x0 " << x0 << ", n " << n + 1 << " (third)";
       }
     }
 }

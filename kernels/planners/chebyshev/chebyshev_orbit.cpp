@@ -19,9 +19,10 @@ ChebyshevOrbit::Value drawn(double x, ChebTransform t) {
   return {x, (cheb_transform(x, t) - lo) / span};
 }
 
-// Block j holds the 64 * 2^j iterates (at most 2^16) after block j - 1's,
-// the first those after the run's own: a run that stops early computes
-// little it does not use, one that runs long looks the cache up seldom.
+// Block j holds the 64 * 2^j iterates (at most 2^16) after the span before
+// it (the run's own 32, then blocks 0 .. j - 1): a run that stops early
+// computes little it does not use, one that runs long looks the cache up
+// seldom.
 std::size_t block_size(int j) { return std::size_t(64) << std::min(j, 10); }
 
 std::shared_ptr<const OrbitBlock> make_block(int k, ChebTransform t, double x, int j) {
@@ -39,22 +40,41 @@ ChebyshevOrbit::ChebyshevOrbit(int k, double x0, ChebTransform transform)
 ChebyshevOrbit::~ChebyshevOrbit() = default;
 
 ChebyshevOrbit::Value ChebyshevOrbit::advance() {
-  if (drawn_ < own_iterates) {
+  if (block_) {  // a block read to its end: go on from its last iterate
+    x_ = block_->values.back().x;
+    block_.reset();
+  }
+  if (drawn_ < own_end_) {
     ++drawn_;
     return drawn(x_ = chebyshev_step(x_, k_), transform_);
   }
-  // Bounded by values held (16 bytes each): 2^18 of them, 4 MiB, several
-  // thousand iterates of each orbit of a sweep like seed001's (128 orbits);
-  // more only made a sweep whose orbits never repeat fault in more memory.
+  // Bounded by values held (16 bytes each; a mark counts one): 2^18 of them,
+  // 4 MiB, several thousand iterates of each orbit of a sweep like seed001's
+  // (128 orbits); more only made a sweep whose orbits never repeat fault in
+  // more memory.
   static SetupCache<OrbitBlock> cache(std::size_t(1) << 18);
-  const int j = index_ + 1;
-  // The iterate before the block's first: the run's last own, or the last
-  // of the block held.
-  const double from = j == 0 ? x_ : block_->values.back().x;
+  static const auto mark = std::make_shared<const OrbitBlock>();
+  const int j = ++index_;
+  const long n = long(block_size(j));
   SetupKey key;
   key.add(k_).add(x0_).add(int(transform_)).add(j);
-  block_ = cache.get(key, block_size(j), [&] { return make_block(k_, transform_, from, j); });
-  index_ = j;
+  bool first = false;
+  std::shared_ptr<const OrbitBlock> b = cache.get(key, 1, [&] {
+    first = true;
+    return mark;
+  });
+  if (first) {  // no run has drawn this far: draw on, leaving the mark
+    own_end_ = drawn_ + n;
+    ++drawn_;
+    return drawn(x_ = chebyshev_step(x_, k_), transform_);
+  }
+  if (b->values.empty()) {  // a second run: the orbit is shared, build
+    b = make_block(k_, transform_, x_, j);
+    cache.replace(key, std::size_t(n), b);
+  }
+  block_ = std::move(b);
+  drawn_ += n;
+  own_end_ = drawn_;
   at_ = block_->values.data();
   end_ = at_ + block_->values.size();
   return *at_++;

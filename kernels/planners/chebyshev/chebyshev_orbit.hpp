@@ -5,7 +5,10 @@
 // transform draw the same values (the Y map's initial value is usually
 // fixed, the X map's an axis), and cos(k arccos x) and the transform's
 // arcsine were a quarter of the planner's time (issue 20). A block is a pure
-// function of its key, so sharing never shows in a result.
+// function of its key, so sharing never shows in a result. A block is built
+// when a second run reaches it (the first leaves a mark and draws on): an
+// orbit that no other run draws costs a mark per block, never iterates that
+// no one reads.
 #include <memory>
 
 #include "kernels/systems/cheb_transform.hpp"
@@ -37,9 +40,10 @@ class ChebyshevOrbit {
   int k_;
   double x0_;
   ChebTransform transform_;
-  double x_;        // the last iterate drawn before the blocks
-  int drawn_ = 0;   // iterates drawn before the blocks (up to own_iterates)
-  int index_ = -1;  // the block held
+  double x_;                     // the last iterate the run drew itself
+  long drawn_ = 0;               // iterates drawn (a block's all at once, when taken)
+  long own_end_ = own_iterates;  // the run draws its own iterates up to here
+  int index_ = -1;               // the last block looked up
   std::shared_ptr<const OrbitBlock> block_;
   const Value* at_ = nullptr;
   const Value* end_ = nullptr;
