@@ -1,83 +1,42 @@
 #include "kernels/planners/chebyshev/chebyshev_orbit.hpp"
 
-#include <algorithm>
-#include <vector>
-
-#include "kernels/core/setup_cache.hpp"
 #include "kernels/systems/chebyshev_map.hpp"
 
 namespace chaosweep {
 
-struct OrbitBlock {
-  std::vector<ChebyshevOrbit::Value> values;
-};
-
 namespace {
 
-ChebyshevOrbit::Value drawn(double x, ChebTransform t) {
-  const double lo = cheb_lo(t), span = cheb_hi(t) - lo;
-  return {x, (cheb_transform(x, t) - lo) / span};
+SharedOrbit<ChebyshevOrbit::Value>::Cache& orbit_cache() {
+  // Bounded by values held (16 bytes each; a mark counts one): 2^18 of them,
+  // 4 MiB, several thousand iterates of each orbit of a sweep like seed001's
+  // (128 orbits); more only made a sweep whose orbits never repeat fault in
+  // more memory.
+  static SharedOrbit<ChebyshevOrbit::Value>::Cache cache(std::size_t(1) << 18);
+  return cache;
 }
 
-// Block j holds the 64 * 2^j iterates (at most 2^16) after the span before
-// it (the run's own 32, then blocks 0 .. j - 1): a run that stops early
-// computes little it does not use, one that runs long looks the cache up
-// seldom.
-std::size_t block_size(int j) { return std::size_t(64) << std::min(j, 10); }
-
-std::shared_ptr<const OrbitBlock> make_block(int k, ChebTransform t, double x, int j) {
-  auto b = std::make_shared<OrbitBlock>();
-  b->values.resize(block_size(j));
-  for (ChebyshevOrbit::Value& v : b->values) v = drawn(x = chebyshev_step(x, k), t);
-  return b;
+SetupKey orbit_key(int k, double x0, ChebTransform t) {
+  SetupKey key;
+  key.add(k).add(x0).add(int(t));
+  return key;
 }
 
 }  // namespace
 
 ChebyshevOrbit::ChebyshevOrbit(int k, double x0, ChebTransform transform)
-    : k_(k), x0_(x0), transform_(transform), x_(x0) {}
+    : k_(k), transform_(transform), orbit_(orbit_key(k, x0, transform), x0, orbit_cache()) {}
 
-ChebyshevOrbit::~ChebyshevOrbit() = default;
+ChebyshevOrbit::Value ChebyshevOrbit::draw(double& x) const {
+  x = chebyshev_step(x, k_);
+  const double lo = cheb_lo(transform_), span = cheb_hi(transform_) - lo;
+  return {x, (cheb_transform(x, transform_) - lo) / span};
+}
 
-ChebyshevOrbit::Value ChebyshevOrbit::advance() {
-  if (block_) {  // a block read to its end: go on from its last iterate
-    x_ = block_->values.back().x;
-    block_.reset();
-  }
-  if (drawn_ < own_end_) {
-    ++drawn_;
-    return drawn(x_ = chebyshev_step(x_, k_), transform_);
-  }
-  // Bounded by values held (16 bytes each; a mark counts one): 2^18 of them,
-  // 4 MiB, several thousand iterates of each orbit of a sweep like seed001's
-  // (128 orbits); more only made a sweep whose orbits never repeat fault in
-  // more memory.
-  static SetupCache<OrbitBlock> cache(std::size_t(1) << 18);
-  static const auto mark = std::make_shared<const OrbitBlock>();
-  const int j = ++index_;
-  const long n = long(block_size(j));
-  SetupKey key;
-  key.add(k_).add(x0_).add(int(transform_)).add(j);
-  bool first = false;
-  std::shared_ptr<const OrbitBlock> b = cache.get(key, 1, [&] {
-    first = true;
-    return mark;
-  });
-  if (first) {  // no run has drawn this far: draw on, leaving the mark
-    own_end_ = drawn_ + n;
-    ++drawn_;
-    return drawn(x_ = chebyshev_step(x_, k_), transform_);
-  }
-  if (b->values.empty()) {  // a second run: the orbit is shared, build
-    b = make_block(k_, transform_, x_, j);
-    cache.replace(key, std::size_t(n), b);
-  }
-  block_ = std::move(b);
-  drawn_ += n;
-  own_end_ = drawn_;
-  at_ = block_->values.data();
-  end_ = at_ + block_->values.size();
-  return *at_++;
+std::shared_ptr<const OrbitBlock<ChebyshevOrbit::Value>> ChebyshevOrbit::block(double x, long n) const {
+  auto b = std::make_shared<OrbitBlock<Value>>();
+  b->values.resize(std::size_t(n));
+  for (Value& v : b->values) v = draw(x);
+  return b;
 }
 
 }  // namespace chaosweep
