@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <set>
+#include <vector>
 
 #include "kernels/core/coverage_grid.hpp"
 #include "kernels/planners/arnold/control.hpp"
@@ -13,6 +14,7 @@
 #include "kernels/planners/arnold/transit.hpp"
 #include "kernels/planners/arnold/zones.hpp"
 #include "kernels/planners/planner.hpp"
+#include "kernels/systems/logistic_map.hpp"
 #include "tests/support/kernel_test_util.hpp"
 
 using namespace chaosweep;
@@ -152,8 +154,47 @@ TEST(ZoneGoal, IsTheMidpointOrTheNearestClearFreeCell) {
 
 // ---------------------------------------------------------------- transits
 
+// The orbit a run draws, its own first iterates then the shared blocks, is
+// the Logistic map stepped and its heading's cosine and sine taken one
+// iterate at a time, on whichever branch each draw asks for: for two runs
+// out of step (the one first at a block leaves a mark and draws on, the
+// other builds it) and a third that reads the blocks.
+TEST(LogisticOrbit, DrawsTheMapsIteratesAndHeadingsWhoeverBuiltTheBlocks) {
+  const int draws = 20000;
+  for (const double x0 : {0.1, 0.123456789, 0.75}) {  // 0.75 = 1 - 1/r: degenerate at once
+    struct Expected {
+      double x;
+      bool ok;
+      double cos, sin;
+    };
+    std::vector<Expected> expected;
+    LogisticMap map{x0, 4.0};
+    for (int n = 0; n < draws; ++n) {
+      const bool right = (n * 7 / 5) % 2 == 0;
+      const bool ok = map.step();
+      const double th = map.heading(right);
+      expected.push_back({map.x, ok, std::cos(th), std::sin(th)});
+    }
+    LogisticOrbit first(4.0, x0), second(4.0, x0), third(4.0, x0);
+    const auto check = [&](LogisticOrbit& o, int n, const char* who) {
+      const LogisticOrbit::Heading h = o.next((n * 7 / 5) % 2 == 0);
+      const Expected& e = expected[std::size_t(n)];
+      ASSERT_EQ(h.x, e.x) << who << ", x0 " << x0 << ", n " << n;
+      ASSERT_EQ(h.ok, e.ok) << who << ", x0 " << x0 << ", n " << n;
+      ASSERT_EQ(h.cos, e.cos) << who << ", x0 " << x0 << ", n " << n;
+      ASSERT_EQ(h.sin, e.sin) << who << ", x0 " << x0 << ", n " << n;
+      ASSERT_EQ(o.x(), e.x);
+    };
+    for (int n = 0; n < draws; ++n) {
+      check(n % 3 == 0 ? second : first, n, "ahead");
+      check(n % 3 == 0 ? first : second, n, "behind");
+    }
+    for (int n = 0; n < draws; ++n) check(third, n, "third");
+  }
+}
+
 TEST(TransitPath, StartsAtTheRobotAndEndsAtTheMidpoint) {
-  LogisticMap map;
+  LogisticOrbit map(4.0, 0.1);
   const Point start{3.0, 4.0}, goal{17.0, 9.5};
   const auto path = transit_path(start, goal, 1.0, 0.1, map);
   const double d = std::hypot(14.0, 5.5);
@@ -172,14 +213,15 @@ TEST(TransitPath, StartsAtTheRobotAndEndsAtTheMidpoint) {
 TEST(TransitPath, HeadsRightwardsWhenTheGoalIsToTheRight) {
   // m = 2: one pure Logistic step, then the goal. The Eq. 4 branch moves the
   // robot towards the goal's side: -pi/2 rightwards, +pi/2 leftwards.
-  LogisticMap a, b;
+  LogisticOrbit a(4.0, 0.1), b(4.0, 0.1);
   const auto right = transit_path({10, 10}, {10.05, 10}, 1.0, 0.1, a);
   const auto left = transit_path({10, 10}, {9.95, 10}, 1.0, 0.1, b);
   ASSERT_EQ(right.size(), 2u);
   ASSERT_EQ(left.size(), 2u);
-  EXPECT_EQ(a.x, b.x);  // same Logistic state, different branch
-  EXPECT_GT(std::cos(a.heading(true)), 0.0);
-  EXPECT_LT(std::cos(a.heading(false)), 0.0);
+  EXPECT_EQ(a.x(), b.x());  // same Logistic state, different branch
+  const LogisticMap m{a.x(), 4.0};
+  EXPECT_GT(std::cos(m.heading(true)), 0.0);
+  EXPECT_LT(std::cos(m.heading(false)), 0.0);
 }
 
 TEST(Transit, ReachesAReachableGoal) {
@@ -454,7 +496,7 @@ TEST(ChaoticSpread, LogisticJitterSamplesTheLogisticPlannerAndLeavesIcAlone) {
     const RunResult r = run_planner(p, square_map(20.0));
     EXPECT_EQ(r.status, Status::ok);
     times.insert(r.coverage_time);
-    EXPECT_NEAR(initial_logistic(p).x, p.logistic_x0, 1e-6);
+    EXPECT_NEAR(initial_logistic(p).x(), p.logistic_x0, 1e-6);
   }
   EXPECT_EQ(times.size(), 4u);
   p.seed = 3;

@@ -24,14 +24,14 @@ int auto_th(const RunParams& p, const Environment& env) {
 
 Vec3<double> initial_state(const RunParams& p) { return system_start(p.system, jittered_ic(p)); }
 
-LogisticMap initial_logistic(const RunParams& p) {
+LogisticOrbit initial_logistic(const RunParams& p) {
   double x0 = p.logistic_x0;
   if (p.logistic_jitter > 0) {
     std::uint64_t s = std::uint64_t(p.seed);
     for (int k = 0; k < 3; ++k) (void)uniform_pm1(s);  // the draws of initial_state, whether used or not
     x0 += p.logistic_jitter * uniform_pm1(s);
   }
-  return {x0, p.logistic_r};
+  return {p.logistic_r, x0};
 }
 
 PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r, TraceSink* trace)
@@ -191,9 +191,9 @@ long PlannerRun::logistic_segment() {
   // The heading branch is chosen once per segment: rightwards from the left half.
   const bool rightwards = robot_.x() < 0.5 * env_.lx;
   for (int i = 0; i < p_.niter && !ended_; ++i) {
-    if (!logistic_.step()) return end(Status::diverged, "Logistic map reached a fixed point"), 0;
-    const double th = logistic_.heading(rightwards);
-    robot_.move(p_.dt_c * p_.v * std::cos(th), p_.dt_c * p_.v * std::sin(th));
+    const LogisticOrbit::Heading h = logistic_.next(rightwards);
+    if (!h.ok) return end(Status::diverged, "Logistic map reached a fixed point"), 0;
+    robot_.move(p_.dt_c * p_.v * h.cos, p_.dt_c * p_.v * h.sin);
     ++r_.steps;
     after_move(p_.dt_c, SegmentKind::logistic);
   }

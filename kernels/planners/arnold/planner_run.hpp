@@ -12,10 +12,10 @@
 #include "kernels/core/robot_motion.hpp"
 #include "kernels/core/run_params.hpp"
 #include "kernels/core/trace.hpp"
+#include "kernels/planners/arnold/logistic_orbit.hpp"
 #include "kernels/planners/arnold/transit.hpp"
 #include "kernels/planners/arnold/zones.hpp"
 #include "kernels/systems/arnold_flow.hpp"
-#include "kernels/systems/logistic_map.hpp"
 #include "kernels/systems/system_list.hpp"
 
 namespace chaosweep {
@@ -46,7 +46,7 @@ class PlannerRun {
   bool transit_to(Point goal);
   Point position() const { return {robot_.x(), robot_.y()}; }
   int th() const { return th_; }
-  double logistic_state() const { return logistic_.x; }
+  double logistic_state() const { return logistic_.x(); }
   double time() const { return t_; }
 
  private:
@@ -95,7 +95,7 @@ class PlannerRun {
   long last_visited_;
   int th_;
   RobotMotion robot_;
-  LogisticMap logistic_;
+  LogisticOrbit logistic_;
   std::shared_ptr<const Zones> zones_;  // null until zones()
   bool ended_ = false;
   int seg_step_ = 0;
@@ -122,6 +122,6 @@ inline bool PlannerRun::after_move(double dt, SegmentKind kind) {
 Vec3<double> initial_state(const RunParams& p);
 // The Logistic map a run starts from (and, with logistic_reset = drop,
 // restarts from when a zone is dropped).
-LogisticMap initial_logistic(const RunParams& p);
+LogisticOrbit initial_logistic(const RunParams& p);
 
 }  // namespace chaosweep

@@ -6,16 +6,16 @@
 
 namespace chaosweep {
 
-std::vector<Point> logistic_positions(Point start, Point goal, double v, double dt_c, LogisticMap& map) {
+std::vector<Point> logistic_positions(Point start, Point goal, double v, double dt_c, LogisticOrbit& map) {
   const double d = inline_hypot(goal.x - start.x, goal.y - start.y);
   const std::size_t m = std::max<std::size_t>(2, std::size_t(std::floor(d / (v * dt_c))) + 1);
   const bool rightwards = goal.x >= start.x;
   std::vector<Point> p(m);
   p[0] = start;
   for (std::size_t i = 1; i < m; ++i) {
-    if (!map.step()) return {};
-    const double th = map.heading(rightwards);
-    p[i] = {p[i - 1].x + dt_c * v * std::cos(th), p[i - 1].y + dt_c * v * std::sin(th)};
+    const LogisticOrbit::Heading h = map.next(rightwards);
+    if (!h.ok) return {};
+    p[i] = {p[i - 1].x + dt_c * v * h.cos, p[i - 1].y + dt_c * v * h.sin};
   }
   return p;
 }
@@ -34,7 +34,7 @@ void map_positions(const std::vector<Point>& P, std::size_t from, Point first, P
   path[m - 1] = goal;
 }
 
-std::vector<Point> transit_path(Point start, Point goal, double v, double dt_c, LogisticMap& map) {
+std::vector<Point> transit_path(Point start, Point goal, double v, double dt_c, LogisticOrbit& map) {
   std::vector<Point> p = logistic_positions(start, goal, v, dt_c, map);
   if (!p.empty()) map_positions(p, 0, start, goal, p);
   return p;

@@ -6,7 +6,7 @@ namespace chaosweep {
 
 namespace {
 
-SharedOrbit<ChebyshevOrbit::Value>::Cache& orbit_cache() {
+SharedOrbit<ChebyshevOrbit::Value>::Cache& chebyshev_orbit_cache() {
   // Bounded by values held (16 bytes each; a mark counts one): 2^18 of them,
   // 4 MiB, several thousand iterates of each orbit of a sweep like seed001's
   // (128 orbits); more only made a sweep whose orbits never repeat fault in
@@ -15,7 +15,7 @@ SharedOrbit<ChebyshevOrbit::Value>::Cache& orbit_cache() {
   return cache;
 }
 
-SetupKey orbit_key(int k, double x0, ChebTransform t) {
+SetupKey chebyshev_orbit_key(int k, double x0, ChebTransform t) {
   SetupKey key;
   key.add(k).add(x0).add(int(t));
   return key;
@@ -24,7 +24,7 @@ SetupKey orbit_key(int k, double x0, ChebTransform t) {
 }  // namespace
 
 ChebyshevOrbit::ChebyshevOrbit(int k, double x0, ChebTransform transform)
-    : k_(k), transform_(transform), orbit_(orbit_key(k, x0, transform), x0, orbit_cache()) {}
+    : k_(k), transform_(transform), orbit_(chebyshev_orbit_key(k, x0, transform), x0, chebyshev_orbit_cache()) {}
 
 ChebyshevOrbit::Value ChebyshevOrbit::draw(double& x) const {
   x = chebyshev_step(x, k_);

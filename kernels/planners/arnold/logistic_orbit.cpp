@@ -1,0 +1,58 @@
+#include "kernels/planners/arnold/logistic_orbit.hpp"
+
+#include <cmath>
+
+#include "kernels/systems/logistic_map.hpp"
+
+namespace chaosweep {
+
+namespace {
+
+SharedOrbit<LogisticOrbit::Value>::Cache& logistic_orbit_cache() {
+  // Bounded by values held (48 bytes each; a mark counts one): 2^20 of them,
+  // 48 MiB: Table 1's transit orbit (one x0, no jitter) is drawn 50 k
+  // values deep by the median run, 200 k by one in ten, 830 k at most; a
+  // smaller bound evicts its first blocks before the next run needs them.
+  static SharedOrbit<LogisticOrbit::Value>::Cache cache(std::size_t(1) << 20);
+  return cache;
+}
+
+SetupKey logistic_orbit_key(double r, double x0) {
+  SetupKey key;
+  key.add(r).add(x0);
+  return key;
+}
+
+}  // namespace
+
+LogisticOrbit::LogisticOrbit(double r, double x0)
+    : r_(r), x_(x0), orbit_(logistic_orbit_key(r, x0), x0, logistic_orbit_cache()) {}
+
+LogisticOrbit::Heading LogisticOrbit::draw(double& x, bool rightwards) const {
+  LogisticMap map{x, r_};
+  Heading h;
+  h.ok = map.step();
+  x = h.x = map.x;
+  const double th = map.heading(rightwards);
+  h.cos = std::cos(th);
+  h.sin = std::sin(th);
+  return h;
+}
+
+std::shared_ptr<const OrbitBlock<LogisticOrbit::Value>> LogisticOrbit::block(double x, long n) const {
+  auto b = std::make_shared<OrbitBlock<Value>>();
+  b->values.resize(std::size_t(n));
+  LogisticMap map{x, r_};
+  for (Value& v : b->values) {
+    v.ok = map.step();
+    v.x = map.x;
+    const double right = map.heading(true), left = map.heading(false);
+    v.cos_right = std::cos(right);
+    v.sin_right = std::sin(right);
+    v.cos_left = std::cos(left);
+    v.sin_left = std::sin(left);
+  }
+  return b;
+}
+
+}  // namespace chaosweep

@@ -1,0 +1,48 @@
+#pragma once
+// The Logistic map's orbit as a run draws it (seed 000, Eqs. 2 and 4): each
+// iterate, whether the orbit is still usable there, and the cosine and sine
+// of the robot's heading on either branch; the later iterates shared by the
+// runs of a sweep (core/shared_orbit.hpp). MapZoning's transit points draw
+// it from one x0 in every run (Table 1: no jitter), and their C-library
+// sincos was an eighth of the Table 1 search (issue 20).
+#include "kernels/core/shared_orbit.hpp"
+
+namespace chaosweep {
+
+class LogisticOrbit {
+ public:
+  // x' = r x (1 - x) from x0.
+  LogisticOrbit(double r, double x0);
+
+  struct Heading {
+    double x;  // the iterate
+    bool ok;   // false: a degenerate orbit (a fixed point 0 or 1 - 1/r, or outside [0, 1]); the run ends diverged
+    double cos, sin;  // of theta = pi x - pi/2 (rightwards) or pi x + pi/2
+  };
+  // The next iterate and the heading it gives on the branch asked for.
+  Heading next(bool rightwards) {
+    const Value* v = orbit_.take([this](double x, long n) { return block(x, n); });
+    const Heading h = !v           ? draw(orbit_.state(), rightwards)
+                      : rightwards ? Heading{v->x, v->ok, v->cos_right, v->sin_right}
+                                   : Heading{v->x, v->ok, v->cos_left, v->sin_left};
+    x_ = h.x;
+    return h;
+  }
+  // The last iterate drawn (x0 before the first).
+  double x() const { return x_; }
+
+  struct Value {  // a shared iterate: both branches
+    double x;
+    bool ok;
+    double cos_right, sin_right, cos_left, sin_left;
+  };
+
+ private:
+  Heading draw(double& x, bool rightwards) const;  // the iterate after x, and x becomes it
+  std::shared_ptr<const OrbitBlock<Value>> block(double x, long n) const;
+
+  double r_, x_;
+  SharedOrbit<Value> orbit_;
+};
+
+}  // namespace chaosweep
