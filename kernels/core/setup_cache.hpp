@@ -1,10 +1,10 @@
 #pragma once
 // Setup that the runs of a sweep share (per map MapZoning's zones and the
-// cells clear of Eq. 8; the Chebyshev maps' orbits), built once per distinct
-// key instead of once per run: a 200 m SR 1 map took 1.1-1.5 ms of setup per
-// run (issue 20). An entry is
-// an immutable object, a pure function of its key, so which thread built it
-// and in what order the runs came never shows in a result.
+// cells clear of Eq. 8; the chaotic maps' orbits, SharedOrbit), built once
+// per distinct key instead of once per run: a 200 m SR 1 map took 1.1-1.5
+// ms of setup per run (issue 20). An entry is an immutable object, a pure
+// function of its key, so which thread built it and in what order the runs
+// came never shows in a result.
 #include <cstdint>
 #include <list>
 #include <memory>
@@ -95,9 +95,9 @@ class SetupCache {
     std::size_t cost;
   };
 
-  // Most recently used first, found by key in constant time: a Chebyshev
-  // orbit's blocks are thousands of entries, and a sweep whose orbits never
-  // repeat evicts one for every block it adds.
+  // Most recently used first, found by key in constant time: an orbit's
+  // blocks and marks are thousands of entries, and a sweep whose orbits
+  // never repeat evicts one for every mark it adds.
   std::shared_ptr<const T> use(const std::string& key) {  // null: none
     const auto it = index_.find(key);
     if (it == index_.end()) return nullptr;

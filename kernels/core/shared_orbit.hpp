@@ -56,6 +56,7 @@ class SharedOrbit {
     if (block_) {  // a block read to its end: the run goes on from its last
       x_ = block_->values.back().x;
       block_.reset();
+      at_ = end_ = nullptr;
     }
     if (drawn_ < own_end_) return ++drawn_, nullptr;
     const int j = ++index_;
