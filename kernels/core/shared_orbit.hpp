@@ -38,10 +38,11 @@ class SharedOrbit {
 
   // The next value from a shared block, or null: the run draws this one
   // itself, from state() (the last iterate it drew, or a block's last).
-  // build(x, n): the block of the n values after iterate x.
-  template <class Build>
-  const Value* take(Build&& build) {
-    return at_ != end_ ? at_++ : next_block(build);
+  // fill(x): the value after iterate x, and x becomes its iterate; a block
+  // is n calls of it from the iterate before the block.
+  template <class Fill>
+  const Value* take(Fill&& fill) {
+    return at_ != end_ ? at_++ : next_block(fill);
   }
   double& state() { return x_; }
 
@@ -51,8 +52,8 @@ class SharedOrbit {
   // little it does not use, one that runs long looks the cache up seldom.
   static long block_size(int j) { return long(64) << std::min(j, 10); }
 
-  template <class Build>
-  const Value* next_block(Build& build) {
+  template <class Fill>
+  const Value* next_block(Fill& fill) {
     if (block_) {  // a block read to its end: the run goes on from its last
       x_ = block_->values.back().x;
       block_.reset();
@@ -74,8 +75,12 @@ class SharedOrbit {
       return ++drawn_, nullptr;
     }
     if (b->values.empty()) {  // a second run: the orbit is shared, build
-      b = build(x_, n);
-      cache_->replace(key, std::size_t(n), b);
+      auto built = std::make_shared<Block>();
+      built->values.resize(std::size_t(n));
+      double x = x_;
+      for (Value& v : built->values) v = fill(x);
+      cache_->replace(key, std::size_t(n), built);
+      b = std::move(built);
     }
     block_ = std::move(b);
     drawn_ += n;

@@ -39,20 +39,17 @@ LogisticOrbit::Heading LogisticOrbit::draw(double& x, bool rightwards) const {
   return h;
 }
 
-std::shared_ptr<const OrbitBlock<LogisticOrbit::Value>> LogisticOrbit::block(double x, long n) const {
-  auto b = std::make_shared<OrbitBlock<Value>>();
-  b->values.resize(std::size_t(n));
+LogisticOrbit::Value LogisticOrbit::both(double& x) const {
   LogisticMap map{x, r_};
-  for (Value& v : b->values) {
-    v.ok = map.step();
-    v.x = map.x;
-    const double right = map.heading(true), left = map.heading(false);
-    v.cos_right = std::cos(right);
-    v.sin_right = std::sin(right);
-    v.cos_left = std::cos(left);
-    v.sin_left = std::sin(left);
-  }
-  return b;
+  Value v;
+  v.ok = map.step();
+  x = v.x = map.x;
+  const double right = map.heading(true), left = map.heading(false);
+  v.cos_right = std::cos(right);
+  v.sin_right = std::sin(right);
+  v.cos_left = std::cos(left);
+  v.sin_left = std::sin(left);
+  return v;
 }
 
 }  // namespace chaosweep

@@ -21,7 +21,7 @@ class LogisticOrbit {
   };
   // The next iterate and the heading it gives on the branch asked for.
   Heading next(bool rightwards) {
-    const Value* v = orbit_.take([this](double x, long n) { return block(x, n); });
+    const Value* v = orbit_.take([this](double& x) { return both(x); });
     const Heading h = !v           ? draw(orbit_.state(), rightwards)
                       : rightwards ? Heading{v->x, v->ok, v->cos_right, v->sin_right}
                                    : Heading{v->x, v->ok, v->cos_left, v->sin_left};
@@ -38,8 +38,9 @@ class LogisticOrbit {
   };
 
  private:
-  Heading draw(double& x, bool rightwards) const;  // the iterate after x, and x becomes it
-  std::shared_ptr<const OrbitBlock<Value>> block(double x, long n) const;
+  // The iterate after x (x becomes it), with the heading on one branch, or both.
+  Heading draw(double& x, bool rightwards) const;
+  Value both(double& x) const;
 
   double r_, x_;
   SharedOrbit<Value> orbit_;

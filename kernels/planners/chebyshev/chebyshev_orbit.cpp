@@ -32,11 +32,4 @@ ChebyshevOrbit::Value ChebyshevOrbit::draw(double& x) const {
   return {x, (cheb_transform(x, transform_) - lo) / span};
 }
 
-std::shared_ptr<const OrbitBlock<ChebyshevOrbit::Value>> ChebyshevOrbit::block(double x, long n) const {
-  auto b = std::make_shared<OrbitBlock<Value>>();
-  b->values.resize(std::size_t(n));
-  for (Value& v : b->values) v = draw(x);
-  return b;
-}
-
 }  // namespace chaosweep

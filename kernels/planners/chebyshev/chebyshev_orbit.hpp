@@ -21,13 +21,12 @@ class ChebyshevOrbit {
 
   // x_1, x_2, ... in turn.
   Value next() {
-    if (const Value* v = orbit_.take([this](double x, long n) { return block(x, n); })) return *v;
+    if (const Value* v = orbit_.take([this](double& x) { return draw(x); })) return *v;
     return draw(orbit_.state());
   }
 
  private:
   Value draw(double& x) const;  // the iterate after x, and x becomes it
-  std::shared_ptr<const OrbitBlock<Value>> block(double x, long n) const;
 
   int k_;
   ChebTransform transform_;
