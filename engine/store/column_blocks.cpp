@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/store/chunk_filters.hpp"
+#include "engine/store/global_heap_text.hpp"
 #include "engine/store/h5_detail.hpp"
 #include "engine/store/h5_file_rows.hpp"
 
@@ -86,6 +87,7 @@ struct ColumnBlockReader::Impl {
   std::string path;
   Handle file{-1, H5Fclose}, dset{-1, H5Dclose}, mem{-1, H5Tclose}, fspace{-1, H5Sclose}, dxpl{-1, H5Pclose};
   hsize_t rows = 0, block = 0, first = 0, size = 0, next_row = 0;
+  std::size_t converted = 0;
   std::size_t row_size = 0;
   bool any_variable = false;
   // Chunks read raw and unfiltered here, only the members asked for
@@ -93,6 +95,7 @@ struct ColumnBlockReader::Impl {
   // as this machine holds them.
   bool raw = false;
   FileRows file_rows;
+  std::unique_ptr<GlobalHeapText> heap;  // the raw chunks' variable-length text, made at its first
   std::vector<unsigned char> stored, chunk, member;
   std::vector<Wanted> cols;
   std::vector<std::size_t> slot;  // per column asked for, its entry of cols (a name asked twice is read once)
@@ -182,6 +185,7 @@ std::size_t ColumnBlockReader::rows() const { return std::size_t(impl_->rows); }
 std::size_t ColumnBlockReader::block_rows() const { return std::size_t(impl_->block); }
 std::size_t ColumnBlockReader::first() const { return std::size_t(impl_->first); }
 std::size_t ColumnBlockReader::size() const { return std::size_t(impl_->size); }
+std::size_t ColumnBlockReader::blocks_converted() const { return impl_->converted; }
 
 Column::Type ColumnBlockReader::type(std::size_t c) const {
   const H5T_class_t cls = impl_->cols[impl_->slot.at(c)].cls;
@@ -213,9 +217,9 @@ const std::vector<std::string>& ColumnBlockReader::text(std::size_t c) const {
 }
 
 // The current block from its chunks as stored: inflated, then of each member
-// asked for only its bytes unshuffled. False (the block then read through
-// HDF5, which names a damaged file) when a chunk is not as expected or holds
-// a variable-length string that is not empty (its text is in the heap).
+// asked for only its bytes unshuffled, variable-length text from the global
+// heap. False (the block then read through HDF5, which names a damaged
+// file) when a chunk or the heap is not as expected.
 bool ColumnBlockReader::Impl::read_raw_block() {
   Impl& m = *this;
   const hsize_t cr = m.file_rows.chunk_rows;
@@ -242,8 +246,10 @@ bool ColumnBlockReader::Impl::read_raw_block() {
       } else if (w.variable) {
         for (std::size_t r = 0; r < valid; ++r) {
           const unsigned char* p = m.member.data() + r * size;
-          if (std::any_of(p, p + size, [](unsigned char b) { return b != 0; })) return false;
-          w.text.emplace_back();
+          std::string& t = w.text.emplace_back();
+          if (std::all_of(p, p + size, [](unsigned char b) { return b == 0; })) continue;
+          if (!m.heap) m.heap = std::make_unique<GlobalHeapText>(m.file.id);
+          if (!m.heap->usable() || !m.heap->text(p, t)) return false;
         }
       } else {
         for (std::size_t r = 0; r < valid; ++r) take(w, at + r, m.member.data() + r * size);
@@ -265,6 +271,7 @@ bool ColumnBlockReader::next() {
   m.next_row += m.size;
   const std::size_t n = std::size_t(m.size);
   if (m.raw && !m.cols.empty() && m.read_raw_block()) return true;
+  if (!m.cols.empty()) ++m.converted;
   m.buf.assign(n * m.row_size, 0);
   H5Sselect_hyperslab(m.fspace.id, H5S_SELECT_SET, &m.first, nullptr, &m.size, nullptr);
   Handle mspace{H5Screate_simple(1, &m.size, nullptr), H5Sclose};

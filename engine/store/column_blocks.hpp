@@ -39,6 +39,9 @@ class ColumnBlockReader {
   const std::vector<double>& f64(std::size_t c) const;
   const std::vector<std::string>& text(std::size_t c) const;
   const std::vector<double>& number(std::size_t c) const;
+  // The blocks so far read through HDF5's type conversion (the slow path;
+  // none in a file this engine wrote, text included).
+  std::size_t blocks_converted() const;
 
  private:
   struct Impl;

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <set>
@@ -15,6 +16,7 @@
 #include "engine/spec/shard.hpp"
 #include "engine/store/chunk_filters.hpp"
 #include "engine/store/disk_room.hpp"
+#include "engine/store/global_heap_text.hpp"
 #include "engine/store/h5_detail.hpp"
 #include "engine/store/h5_file_rows.hpp"
 #include "engine/store/h5_store.hpp"
@@ -141,14 +143,17 @@ void write_converted(const std::vector<const Input*>& by_index, hid_t dset, hid_
   }
 }
 
+// What read_raw_block found: chunks not as expected (the block then takes
+// the converting path), rows that can be copied as bytes, or rows holding
+// variable-length text (heap ids of their own file, which a copy would leave
+// dangling: written as strings, write_text_block).
+enum class RawBlock { unusable, bytes, text };
+
 // Rows [j0, j0 + per_shard) of every shard as the files store them (`rows`,
 // per shard), their whole chunks read raw and unfiltered on many threads.
-// False when a chunk is not as expected or holds a variable-length string
-// (a heap id of its own file, which a copy would leave dangling): that block
-// then takes the converting path.
-bool read_raw_block(const std::vector<const Input*>& by_index, hsize_t j0, hsize_t per_shard, const FileRows& f,
-                    std::size_t run_id_at, std::int64_t runs_total, const ParallelFor& parallel,
-                    std::vector<std::vector<unsigned char>>& rows) {
+RawBlock read_raw_block(const std::vector<const Input*>& by_index, hsize_t j0, hsize_t per_shard, const FileRows& f,
+                        std::size_t run_id_at, std::int64_t runs_total, const ParallelFor& parallel,
+                        std::vector<std::vector<unsigned char>>& rows) {
   const std::size_t chunk_bytes = std::size_t(out_chunk_rows) * f.row_size;
   struct Task {
     std::size_t shard;
@@ -163,16 +168,16 @@ bool read_raw_block(const std::vector<const Input*>& by_index, hsize_t j0, hsize
     for (hsize_t c = j0; c < std::min(j0 + per_shard, in.rows); c += out_chunk_rows) {
       hsize_t size = 0;
       std::uint32_t mask = 0;
-      if (H5Dget_chunk_storage_size(in.dset->id, &c, &size) < 0 || size == 0) return false;
+      if (H5Dget_chunk_storage_size(in.dset->id, &c, &size) < 0 || size == 0) return RawBlock::unusable;
       Task t{k, c, std::vector<unsigned char>(size)};
       herr_t rc;
       H5E_BEGIN_TRY { rc = H5Dread_chunk(in.dset->id, H5P_DEFAULT, &c, &mask, t.stored.data()); }
       H5E_END_TRY;
-      if (rc < 0 || mask != 0) return false;
+      if (rc < 0 || mask != 0) return RawBlock::unusable;
       tasks.push_back(std::move(t));
     }
   }
-  std::atomic<bool> ok{true}, wrong_id{false};
+  std::atomic<bool> ok{true}, wrong_id{false}, text{false};
   run_parallel(parallel, tasks.size(), [&](std::size_t i) {
     const Task& t = tasks[i];
     const Input& in = *by_index[t.shard];
@@ -193,7 +198,7 @@ bool read_raw_block(const std::vector<const Input*>& by_index, hsize_t j0, hsize
       for (std::size_t m = 0; m < f.offsets.size(); ++m) {
         if (!f.variable_text[m]) continue;
         const unsigned char* p = row + f.offsets[m];
-        if (std::any_of(p, p + 16, [](unsigned char b) { return b != 0; })) ok = false;
+        if (std::any_of(p, p + 16, [](unsigned char b) { return b != 0; })) text = true;
       }
     }
   });
@@ -204,7 +209,60 @@ bool read_raw_block(const std::vector<const Input*>& by_index, hsize_t j0, hsize
       check_run_ids(in, t.chunk, std::min(out_chunk_rows, in.rows - t.chunk),
                     rows[t.shard].data() + std::size_t(t.chunk - j0) * f.row_size, f.row_size, run_id_at, runs_total);
     }
-  return ok;
+  return !ok ? RawBlock::unusable : text ? RawBlock::text : RawBlock::bytes;
+}
+
+// Where each member sits in a row of memory type `type` and how wide it
+// is, for rows read raw (file layout `f`) and written through HDF5; empty
+// when a number is not stored as `type` holds it.
+struct MemoryRows {
+  std::size_t row_size = 0;
+  std::vector<std::size_t> offsets, sizes;
+};
+MemoryRows memory_rows(hid_t type, hid_t ftype, const FileRows& f) {
+  MemoryRows m;
+  m.row_size = H5Tget_size(type);
+  for (unsigned i = 0; i < unsigned(f.offsets.size()); ++i) {
+    Handle mt{H5Tget_member_type(type, i), H5Tclose}, ft{H5Tget_member_type(ftype, i), H5Tclose};
+    if (!f.variable_text[i] && H5Tequal(mt.id, ft.id) <= 0) return {};
+    m.offsets.push_back(H5Tget_member_offset(type, i));
+    m.sizes.push_back(H5Tget_size(mt.id));
+  }
+  return m;
+}
+
+// Interleaves `rows` (a raw block of every shard, holding text) into rows of
+// memory type `type` (layout `m`), each string read from its shard's heap,
+// and writes them through HDF5, which puts the strings in the output's
+// heap. False (nothing written) when a string cannot be read so: the block
+// then takes the converting path, which names a damaged shard. `out`: the
+// rows' buffer, kept from block to block (a new one is page-faulted in).
+bool write_text_block(const std::vector<std::vector<unsigned char>>& rows, hsize_t j0, hsize_t per_shard,
+                      const FileRows& f, const MemoryRows& m, std::vector<std::unique_ptr<GlobalHeapText>>& heaps,
+                      hid_t dset, hid_t type, hsize_t total, const std::string& path, std::vector<unsigned char>& out) {
+  const hsize_t count = rows.size(), first = j0 * count;
+  const hsize_t n = std::min(total, (j0 + per_shard) * count) - first;
+  out.assign(std::size_t(n) * m.row_size, 0);
+  std::deque<std::string> texts;
+  for (hsize_t r = 0; r < n; ++r) {
+    const hsize_t run = first + r, k = run % count, j = run / count - j0;
+    const unsigned char* src = rows[k].data() + std::size_t(j) * f.row_size;
+    unsigned char* dst = out.data() + std::size_t(r) * m.row_size;
+    for (std::size_t i = 0; i < m.offsets.size(); ++i) {
+      const unsigned char* p = src + f.offsets[i];
+      if (!f.variable_text[i]) {
+        std::memcpy(dst + m.offsets[i], p, m.sizes[i]);
+        continue;
+      }
+      // All zero: a null string, as HDF5 reads it (the converting path's).
+      if (std::all_of(p, p + 16, [](unsigned char b) { return b == 0; })) continue;
+      if (!heaps[k] || !heaps[k]->usable() || !heaps[k]->text(p, texts.emplace_back())) return false;
+      const char* c = texts.back().c_str();
+      std::memcpy(dst + m.offsets[i], &c, sizeof c);
+    }
+  }
+  if (!write_rows(dset, type, first, n, out.data())) fail_write(path);
+  return true;
 }
 
 // Interleaves `rows` (a raw block of every shard) into the output's chunks,
@@ -240,8 +298,9 @@ void write_raw_block(const std::vector<std::vector<unsigned char>>& rows, hsize_
 // Writes the inputs' rows interleaved by run_id to `path` (created): blocks
 // of whole chunks copied as bytes where every input allows (filters undone
 // and redone on many threads: no type conversion), the rest converted.
-void write_merged(std::vector<Input>& inputs, const std::string& path, std::int64_t total, hsize_t per_shard,
-                  const MergeOptions& options) {
+// Returns the blocks written through HDF5's conversion of the shards' rows.
+std::int64_t write_merged(std::vector<Input>& inputs, const std::string& path, std::int64_t total, hsize_t per_shard,
+                          const MergeOptions& options) {
   const int count = inputs[0].shard.count;
   std::vector<const Input*> by_index(std::size_t(count), nullptr);
   for (const Input& in : inputs) by_index[std::size_t(in.shard.index)] = &in;
@@ -266,21 +325,34 @@ void write_merged(std::vector<Input>& inputs, const std::string& path, std::int6
           in_rows.deflate_level >= 0 && in_rows.chunk_rows == out_chunk_rows;
   }
   const hsize_t shard_rows = hsize_t(shard_size(total, 0, count));
+  std::int64_t converted = 0;
   if (!raw) {
     write_converted(by_index, dset, type, hsize_t(total), 0, shard_rows, per_shard, path);
+    converted = std::int64_t((shard_rows + per_shard - 1) / per_shard);
   } else {
     const hsize_t chunk_set = hsize_t(count) * out_chunk_rows * out_rows.row_size;
     const hsize_t block = out_chunk_rows * std::clamp<hsize_t>(options.block_bytes / chunk_set, 1, 64);
     std::vector<std::vector<unsigned char>> rows(by_index.size());
+    const MemoryRows mem = memory_rows(type, inputs[0].ftype->id, out_rows);
+    std::vector<std::unique_ptr<GlobalHeapText>> heaps(by_index.size());  // made at a shard's first text
+    std::vector<unsigned char> text_rows;
     for (hsize_t j0 = 0; j0 < shard_rows; j0 += block) {
-      if (read_raw_block(by_index, j0, block, out_rows, run_id_at, total, options.parallel, rows))
+      const RawBlock got = read_raw_block(by_index, j0, block, out_rows, run_id_at, total, options.parallel, rows);
+      if (got == RawBlock::text && !mem.offsets.empty())
+        for (std::size_t k = 0; k < by_index.size(); ++k)
+          if (by_index[k] && !heaps[k]) heaps[k] = std::make_unique<GlobalHeapText>(by_index[k]->file->id);
+      if (got == RawBlock::bytes)
         write_raw_block(rows, j0, block, out_rows, dset, hsize_t(total), options.parallel, path);
-      else
+      else if (got != RawBlock::text || mem.offsets.empty() ||
+               !write_text_block(rows, j0, block, out_rows, mem, heaps, dset, type, hsize_t(total), path, text_rows)) {
         write_converted(by_index, dset, type, hsize_t(total), j0, std::min(j0 + block, shard_rows), out_chunk_rows,
                         path);
+        ++converted;
+      }
     }
   }
   out.finish(inputs, {}, {});
+  return converted;
 }
 
 }  // namespace
@@ -396,8 +468,9 @@ MergeReport merge_results(const std::vector<std::string>& paths, const std::stri
     if (!report.ok()) return report;
   }
 
-  write_via_temp(inputs, output,
-                 [&](const std::string& temp) { write_merged(inputs, temp, report.runs_total, per_shard, options); });
+  write_via_temp(inputs, output, [&](const std::string& temp) {
+    report.blocks_converted = write_merged(inputs, temp, report.runs_total, per_shard, options);
+  });
   return report;
 }
 

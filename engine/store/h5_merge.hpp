@@ -32,6 +32,9 @@ struct MergeReport {
   std::vector<int> shards_to_rerun;         // shard indices holding missing runs
   int shard_count = 1;
   bool tune = false;  // the shards of `chaosweep tune --shard` (engine/store/tune_merge.hpp)
+  // Blocks of rows written through HDF5's conversion of the shards' rows
+  // (the slow path; none for shards a sweep of this engine wrote).
+  std::int64_t blocks_converted = 0;
   bool ok() const { return missing == 0; }
   std::string text() const;
 };

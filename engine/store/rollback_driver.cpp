@@ -253,10 +253,10 @@ herr_t drv_get_handle(H5FD_t* f, hid_t, void** handle) {
   return 0;
 }
 
-herr_t drv_read(H5FD_t* f, H5FD_mem_t, hid_t, haddr_t addr, size_t size, void* buf) {
-  Session& s = session(f);
-  if (!read_all(s.fd, buf, size, off_t(addr))) return -1;
-  if (!s.viewing) return 0;
+// The bytes [addr, addr + size) of the session's file as HDF5 sees them.
+bool read_session(Session& s, std::uint64_t addr, std::size_t size, void* buf) {
+  if (!read_all(s.fd, buf, size, off_t(addr))) return false;
+  if (!s.viewing) return true;
   auto* out = static_cast<unsigned char*>(buf);
   const std::uint64_t end = addr + size;
   if (end > s.eof) {
@@ -270,7 +270,11 @@ herr_t drv_read(H5FD_t* f, H5FD_mem_t, hid_t, haddr_t addr, size_t size, void* b
     const std::uint64_t hi = std::min<std::uint64_t>(it->first + it->second.size(), addr + size);
     if (lo < hi) std::memcpy(out + (lo - addr), it->second.data() + (lo - it->first), std::size_t(hi - lo));
   }
-  return 0;
+  return true;
+}
+
+herr_t drv_read(H5FD_t* f, H5FD_mem_t, hid_t, haddr_t addr, size_t size, void* buf) {
+  return read_session(session(f), addr, size, buf) ? 0 : -1;
 }
 
 herr_t drv_write(H5FD_t* f, H5FD_mem_t, hid_t, haddr_t addr, size_t size, const void* buf) {
@@ -452,6 +456,15 @@ void abandon_session(hid_t file) {
   std::lock_guard<std::mutex> lock(sessions_mutex);
   for (Session* s : open_sessions)
     if (&s->fd == handle) s->failed = true;
+}
+
+bool read_file_bytes(hid_t file, std::uint64_t addr, std::size_t n, void* buf) {
+  void* handle = nullptr;
+  if (H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) < 0 || !handle) return false;
+  std::lock_guard<std::mutex> lock(sessions_mutex);
+  for (Session* s : open_sessions)
+    if (&s->fd == handle) return read_session(*s, addr, n, buf);
+  return false;
 }
 
 const std::string& rollback_open_error() { return last_open_error; }

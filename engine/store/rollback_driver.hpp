@@ -23,6 +23,8 @@
 // crash or power loss (nothing is fsync'ed). Files are plain HDF5: any HDF5
 // reader (h5py, h5dump) opens them; only a file with a pending journal needs
 // this driver (or one write-open by it) to be read as of its last close.
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "engine/store/h5_id.hpp"
@@ -45,6 +47,13 @@ void roll_back(const std::string& file);
 // writing) undoes the session. For a write that failed without an I/O error
 // the driver could see (an HDF5 error after the extent grew).
 void abandon_session(H5Id file);
+
+// Reads the bytes [addr, addr + n) of `file` (an open HDF5 file of this
+// driver; addresses as the driver sees them, the user block included) as
+// HDF5 reads them, through a pending journal too. False when `file` is not
+// of this driver or the read fails. For a reader that parses a structure
+// of the file HDF5 has no call for (global_heap_text.hpp).
+bool read_file_bytes(H5Id file, std::uint64_t addr, std::size_t n, void* buf);
 
 // Why the driver's last open failed in this thread ("" if it did not), e.g.
 // that another process holds the file's lock; for error messages.

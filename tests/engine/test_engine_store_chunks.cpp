@@ -206,8 +206,9 @@ TEST(StoreChunks, ChunksMadeByTheWriterAreTheBytesHdf5WouldStore) {
 // Merge copies the shards' chunks as bytes (no type conversion) where none
 // holds variable-length text: whatever the threads and the block size, the
 // merged file is the one file of all rows a sweep writes, to the byte; a
-// block whose chunks hold a message goes through HDF5's conversion, and its
-// messages read back (a copied heap id would point into the shard's file).
+// block whose chunks hold a message is written through HDF5 (its strings read
+// from the shards' heaps), and its messages read back (a copied heap id
+// would point into the shard's file).
 TEST(StoreChunks, MergedShardsAreTheBytesOfOneFileOfAllRows) {
   test::TempDir tmp;
   CountedThreads threads;
@@ -243,6 +244,7 @@ TEST(StoreChunks, MergedShardsAreTheBytesOfOneFileOfAllRows) {
       }
       expect_same_columns(out, tmp.file("whole.h5"));
       EXPECT_EQ(read_text_column(out, "message")[5000], message_every ? "run 5000 said something" : "");
+      EXPECT_EQ(r.blocks_converted, 0) << "text read from the shards' heaps, not through HDF5's conversion";
     }
   }
   EXPECT_GT(calls.load(), 4);

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -88,6 +91,55 @@ TEST(StoreReaders, BlockReaderGivesTheWholeFileReadersValuesOnManyChunks) {
   EXPECT_EQ(some.text.at("status"), all.text.at("status"));
   EXPECT_EQ(some.i64.at("steps"), all.i64.at("steps"));
   EXPECT_EQ(some.f64.at("coverage_time"), all.f64.at("coverage_time"));
+}
+
+// Variable-length text is read from the file's global heap, not through
+// HDF5's conversion (global_heap_text.hpp): messages of every kind (short,
+// empty, UTF-8, longer than a heap collection's 4 KiB, one of 100 KB that
+// gets a collection of its own) come back as written, with no block read
+// the slow way; a file whose heap cannot be read so still reads right.
+TEST(StoreReaders, TextIsReadFromTheHeapAsWrittenWithoutHdf5sConversion) {
+  test::TempDir tmp;
+  std::vector<RunRow> rows = rows_of(5000);
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    std::string& m = rows[j].result.message;
+    if (j % 13 == 0) m = "r\u00e9sum\u00e9 \u2713 " + std::to_string(j);
+    if (j % 501 == 0) m = std::string(5000 + j, char('a' + j % 26));
+    if (j % 7 == 1) m.clear();
+  }
+  rows[4321].result.message = std::string(100000, 'z') + "end";
+  const std::string path = write(tmp, "t.h5", rows);
+  const std::vector<std::string> want = read_typed_columns(path).text.at("message");  // HDF5's conversion
+  ASSERT_EQ(want.size(), rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) ASSERT_EQ(want[j], rows[j].result.message) << "row " << j;
+  for (const std::size_t block : {std::size_t(0), std::size_t(1024)}) {
+    ColumnBlockReader reader(path, {"message", "run_id", "env"}, block);
+    std::vector<std::string> got;
+    while (reader.next()) got.insert(got.end(), reader.text(0).begin(), reader.text(0).end());
+    EXPECT_EQ(got, want);
+    EXPECT_EQ(reader.blocks_converted(), 0u) << "every block from raw chunks and the heap";
+  }
+  // The signature of the collection of row 4321's message damaged: the
+  // reader's fallback, HDF5's conversion, names the file damaged.
+  const std::string bad = tmp.file("bad.h5");
+  std::filesystem::copy_file(path, bad);
+  {
+    std::fstream f(bad, std::ios::in | std::ios::out | std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const std::size_t text = bytes.find(std::string(100000, 'z') + "end");
+    ASSERT_NE(text, std::string::npos);
+    const std::size_t at = text - 32;  // the collection's header, then the object's (16 bytes each)
+    ASSERT_EQ(bytes.substr(at, 4), "GCOL");
+    f.seekp(std::streamoff(at));
+    f.write("XCOL", 4);
+  }
+  EXPECT_THROW(
+      {
+        ColumnBlockReader reader(bad, {"message"});
+        while (reader.next()) {
+        }
+      },
+      std::runtime_error);
 }
 
 TEST(StoreReaders, AMissingColumnIsNamedWithEveryColumnOfTheFile) {
