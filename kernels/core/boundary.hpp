@@ -12,12 +12,17 @@ template <class T>
 inline T triangle_fold(T u, T lo, T hi) {
   T r = lane::select(u < lo, (lo + lo) - u, u);
   r = lane::select(r > hi, (hi + hi) - r, r);
+  // The common case, every lane inside after at most one reflection, skips
+  // the periodic path's division (the lanes' obstacle maps take this path
+  // at every step); the select below would return r for each such lane.
+  const auto inside = (r >= lo) & (r <= hi);
+  if (lane::all(inside)) return r;
   const T width = hi - lo;
   const T period = width + width;
   T w = u - lo;
   w = w - period * lane::floor(w / period);
   w = lane::select(w > width, period - w, w);
-  return lane::select((r >= lo) & (r <= hi), r, lo + w);
+  return lane::select(inside, r, lo + w);
 }
 
 // The scalar form branches on the common case (already inside); same result.
