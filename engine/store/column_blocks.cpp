@@ -14,7 +14,9 @@ namespace chaosweep {
 using h5::Handle;
 using h5::input_fail;
 
-namespace {
+// Named, not anonymous: ColumnBlockReader::Impl (external linkage) holds
+// them (-Wsubobject-linkage).
+namespace column_blocks_detail {
 
 // A column asked for, as it sits in the packed memory row HDF5 fills.
 struct Wanted {
@@ -27,6 +29,12 @@ struct Wanted {
   std::vector<double> f64;  // floats, or integers as double
   std::vector<std::string> text;
 };
+
+}  // namespace column_blocks_detail
+
+using column_blocks_detail::Wanted;
+
+namespace {
 
 constexpr hsize_t default_chunks_per_block = 16;
 
