@@ -288,8 +288,11 @@ bool ColumnBlockReader::next() {
     H5E_BEGIN_TRY { rc = H5Dread(m.dset.id, m.mem.id, mspace.id, m.fspace.id, m.dxpl.id, m.buf.data()); }
     H5E_END_TRY;
   }
-  if (rc < 0)
+  if (rc < 0) {
+    // The strings HDF5 converted before it failed (the rest are null).
+    if (m.any_variable) H5Dvlen_reclaim(m.mem.id, mspace.id, H5P_DEFAULT, m.buf.data());
     input_fail("cannot read /runs of " + m.path + " (rows " + std::to_string(m.first) + "..): the file is damaged");
+  }
   const unsigned char* base = m.buf.data();
   for (Wanted& w : m.cols) {
     prepare(w, n);

@@ -18,6 +18,7 @@
 #include "engine/store/column_blocks.hpp"
 #include "engine/store/h5_compare.hpp"
 #include "engine/store/h5_store.hpp"
+#include "tests/support/sanitizers.hpp"
 #include "tests/support/test_util.hpp"
 #include "tests/support/varied_rows.hpp"
 
@@ -119,8 +120,11 @@ TEST(StoreReaders, TextIsReadFromTheHeapAsWrittenWithoutHdf5sConversion) {
     EXPECT_EQ(got, want);
     EXPECT_EQ(reader.blocks_converted(), 0u) << "every block from raw chunks and the heap";
   }
+#ifndef CHAOSWEEP_TEST_ASAN
   // The signature of the collection of row 4321's message damaged: the
-  // reader's fallback, HDF5's conversion, names the file damaged.
+  // reader's fallback, HDF5's conversion, names the file damaged. (Not under
+  // AddressSanitizer: HDF5 1.10 leaks its unfiltered chunk and a few strings
+  // when a read fails in its type conversion; the Release build runs it.)
   const std::string bad = tmp.file("bad.h5");
   std::filesystem::copy_file(path, bad);
   {
@@ -140,6 +144,7 @@ TEST(StoreReaders, TextIsReadFromTheHeapAsWrittenWithoutHdf5sConversion) {
         }
       },
       std::runtime_error);
+#endif
 }
 
 TEST(StoreReaders, AMissingColumnIsNamedWithEveryColumnOfTheFile) {
