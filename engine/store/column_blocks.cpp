@@ -38,9 +38,6 @@ namespace {
 
 constexpr hsize_t default_chunks_per_block = 16;
 
-// The bytes of a variable-length string in a chunk (0 when it is empty).
-constexpr std::size_t file_variable_text_size = 16;
-
 // Empties w's values for a block of `n` rows.
 void prepare(Wanted& w, std::size_t n) {
   w.i64.clear();
@@ -255,7 +252,7 @@ bool ColumnBlockReader::Impl::read_raw_block() {
         for (std::size_t r = 0; r < valid; ++r) {
           const unsigned char* p = m.member.data() + r * size;
           std::string& t = w.text.emplace_back();
-          if (std::all_of(p, p + size, [](unsigned char b) { return b == 0; })) continue;
+          if (empty_variable_text(p)) continue;
           if (!m.heap) m.heap = std::make_unique<GlobalHeapText>(m.file.id);
           if (!m.heap->usable() || !m.heap->text(p, t)) return false;
         }

@@ -9,9 +9,6 @@ namespace chaosweep {
 
 using h5::Handle;
 
-// A variable-length string in a chunk: a 4-byte length and a global heap id.
-constexpr std::size_t file_variable_text_size = 16;
-
 FileRows file_rows_of(hid_t dset) {
   FileRows f;
   Handle dcpl{H5Dget_create_plist(dset), H5Pclose};

@@ -4,10 +4,19 @@
 // Internal to the store (h5_store.cpp, h5_merge.cpp), like h5_detail.hpp.
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
 namespace chaosweep {
+
+// A variable-length string in a chunk: its length (4 bytes) and a global
+// heap id (an 8-byte collection address and a 4-byte index); all zero for
+// an empty (or null) string, which has no heap object.
+inline constexpr std::size_t file_variable_text_size = 16;
+inline bool empty_variable_text(const unsigned char* e) {
+  return std::all_of(e, e + file_variable_text_size, [](unsigned char b) { return b == 0; });
+}
 
 struct FileRows {
   std::size_t row_size = 0;          // bytes of a row in a chunk; 0: a member of another kind

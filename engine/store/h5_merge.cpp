@@ -198,7 +198,7 @@ RawBlock read_raw_block(const std::vector<const Input*>& by_index, hsize_t j0, h
       for (std::size_t m = 0; m < f.offsets.size(); ++m) {
         if (!f.variable_text[m]) continue;
         const unsigned char* p = row + f.offsets[m];
-        if (std::any_of(p, p + 16, [](unsigned char b) { return b != 0; })) text = true;
+        if (!empty_variable_text(p)) text = true;
       }
     }
   });
@@ -255,7 +255,7 @@ bool write_text_block(const std::vector<std::vector<unsigned char>>& rows, hsize
         continue;
       }
       // All zero: a null string, as HDF5 reads it (the converting path's).
-      if (std::all_of(p, p + 16, [](unsigned char b) { return b == 0; })) continue;
+      if (empty_variable_text(p)) continue;
       if (!heaps[k] || !heaps[k]->usable() || !heaps[k]->text(p, texts.emplace_back())) return false;
       const char* c = texts.back().c_str();
       std::memcpy(dst + m.offsets[i], &c, sizeof c);
