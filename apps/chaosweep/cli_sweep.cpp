@@ -81,9 +81,10 @@ int run_into(const SweepFlags& o, SweepInput& in, H5RunWriter& writer, std::int6
     };
     written += run_sweep(
         in.spec, evaluator, opt,
-        [&](const std::vector<RunRow>& rows) {
-          writer.append(rows, parallel);
+        [&](const std::vector<RunRow>& rows) -> RowWrite {
+          RowWrite write = writer.prepare_write(rows, parallel);
           for (const RunRow& r : rows) summary.add(r);
+          return write;
         },
         &in.cache);
   }

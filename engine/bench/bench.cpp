@@ -123,7 +123,8 @@ double time_sweep(const SweepSpec& spec, int threads, SimdTarget target) {
     const ParallelFor parallel = [&](std::size_t n, const std::function<void(std::size_t)>& body) {
       evaluator.parallel(n, body);
     };
-    run_sweep(spec, evaluator, SweepOptions{}, [&](const std::vector<RunRow>& rows) { writer.append(rows, parallel); });
+    run_sweep(spec, evaluator, SweepOptions{},
+              [&](const std::vector<RunRow>& rows) { return writer.prepare_write(rows, parallel); });
     writer.finish();
   }
   const double s = seconds_since(t0);

@@ -8,6 +8,8 @@
 #include <mutex>
 #include <thread>
 
+#include "engine/run/write_behind.hpp"
+
 namespace chaosweep {
 
 void preload_environments(const SweepSpec& spec, EnvironmentCache& cache) {
@@ -24,10 +26,11 @@ namespace {
 
 using clock_type = std::chrono::steady_clock;
 
-// Timed hand-over (SweepOptions::flush_seconds): the sink and when it last
-// got rows.
+// Timed hand-over (SweepOptions::flush_seconds): the sink, its writes and
+// when it last got rows.
 struct TimedSink {
   const RowSink& sink;
+  WriteBehind& writes;
   double seconds;
   clock_type::time_point last = clock_type::now();
   bool due() const { return std::chrono::duration<double>(clock_type::now() - last).count() >= seconds; }
@@ -94,7 +97,7 @@ std::size_t run_batch_of(std::vector<RunTuple>& tuples, std::vector<RunResult>& 
         if (p == handed) continue;
         try {
           std::vector<RunRow> piece;
-          timed->sink(take_rows(tuples, results, handed, p, piece));
+          timed->writes.hand_over(timed->sink(take_rows(tuples, results, handed, p, piece)));
           timed->last = clock_type::now();
         } catch (...) {
           sink_failed = std::current_exception();
@@ -135,7 +138,8 @@ std::int64_t run_sweep(const SweepSpec& spec, const BatchEvaluator& evaluator, c
   std::vector<RunResult> results;
   std::vector<RunRow> piece;
   std::int64_t handed = 0;
-  TimedSink timed{sink, opt.flush_seconds};
+  WriteBehind writes;
+  TimedSink timed{sink, writes, opt.flush_seconds};
   for (std::int64_t first = opt.skip; first < total; first += opt.batch_size) {
     if (opt.stop && opt.stop->load()) break;
     const std::int64_t n = std::min(opt.batch_size, total - first);
@@ -153,12 +157,13 @@ std::int64_t run_sweep(const SweepSpec& spec, const BatchEvaluator& evaluator, c
     const std::size_t done =
         run_batch_of(tuples, results, evaluator, opt, opt.flush_seconds > 0 ? &timed : nullptr, early);
     if (early < done) {
-      sink(take_rows(tuples, results, early, done, piece, &evaluator));
+      writes.hand_over(sink(take_rows(tuples, results, early, done, piece, &evaluator)));
       timed.last = std::chrono::steady_clock::now();
     }
     handed += std::int64_t(done);
     if (std::int64_t(done) < n) break;  // stopped
   }
+  writes.wait();
   return handed;
 }
 

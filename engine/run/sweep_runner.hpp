@@ -29,7 +29,12 @@ struct SweepOptions {
   const std::atomic<bool>* stop = nullptr;  // set by SIGINT/SIGTERM: finish runs in flight, return
 };
 
-using RowSink = std::function<void(const std::vector<RunRow>&)>;
+// A sink takes a piece of rows on the sweep's thread (it may use the
+// evaluator's threads meanwhile) and returns their write (or nothing): the
+// part that must run alone, which run_sweep runs on a thread of its own, in
+// order, while the next batch runs (WriteBehind).
+using RowWrite = std::function<void()>;
+using RowSink = std::function<RowWrite(const std::vector<RunRow>&)>;
 
 // Loads every environment the spec names; throws on the first bad one, so a
 // sweep with bad input fails before any run starts.
@@ -38,9 +43,10 @@ void preload_environments(const SweepSpec& spec, EnvironmentCache& cache);
 // Runs the shard's runs after the first opt.skip on `evaluator`, calling sink with
 // consecutive pieces in run_id order (each batch in one piece, or in several
 // when opt.flush_seconds passes first; the sink may be called from a thread
-// of the runner, never from two at once); returns how many runs it handed
-// over (fewer than the shard's when stopped). An exception from the sink
-// stops the runs and is rethrown. `preloaded`: a cache the caller has
+// of the runner, never from two at once); returns, once every write the
+// sink returned has finished, how many runs it handed over (fewer than the
+// shard's when stopped). An exception from the sink or a write stops the
+// runs and is rethrown. `preloaded`: a cache the caller has
 // already filled with preload_environments (saves a pass over the spec).
 std::int64_t run_sweep(const SweepSpec& spec, const BatchEvaluator& evaluator, const SweepOptions& opt,
                        const RowSink& sink, EnvironmentCache* preloaded = nullptr);

@@ -162,7 +162,7 @@ H5RunWriter::H5RunWriter(std::string path, Mode mode, const std::vector<Attribut
       Handle space{H5Dget_space(dset_), H5Sclose};
       hsize_t rows = 0;
       H5Sget_simple_extent_dims(space.id, &rows, nullptr);
-      rows_ = rows;
+      rows_ = prepared_ = rows;
       for (const Attribute& a : attributes) write_attribute(file_, a);
     });
     return;
@@ -244,19 +244,27 @@ void H5RunWriter::set_attributes(const std::vector<Attribute>& attributes) {
 }
 
 void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& parallel) {
-  if (rows.empty()) return;
+  try {
+    write(prepare(rows, parallel));
+  } catch (...) {
+    prepared_ = rows_;  // nothing else prepared meanwhile: the next append follows the file
+    throw;
+  }
+}
+
+PreparedRows H5RunWriter::prepare(const std::vector<RunRow>& rows, const ParallelFor& parallel) {
+  PreparedRows out;
+  out.first_row = prepared_;
+  out.n = rows.size();
+  if (rows.empty()) return out;
   // Pieces end at the file's chunk boundaries, so each whole chunk is one;
   // their rows are encoded in blocks of `block` rows.
   constexpr std::size_t block = 256;
   const std::size_t n = rows.size();
-  struct Piece {
-    std::size_t first, count, parts_end;  // its blocks: parts[previous piece's parts_end, parts_end)
-    std::vector<unsigned char> chunk;     // the filtered chunk when the piece is one (else empty)
-  };
-  std::vector<Piece> pieces;
-  std::vector<EncodedRows> parts;
+  auto& pieces = out.pieces;
+  auto& parts = out.parts;
   for (std::size_t r = 0; r < n;) {
-    const std::size_t to_boundary = chunk_rows - (rows_ + r) % chunk_rows;
+    const std::size_t to_boundary = chunk_rows - (out.first_row + r) % chunk_rows;
     const std::size_t count = std::min(to_boundary, n - r);
     for (std::size_t b = r; b < r + count; b += block) {
       parts.emplace_back();
@@ -266,13 +274,19 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
     pieces.push_back({r, count, parts.size(), {}});
     r += count;
   }
-  // Kept between appends and zeroed block by block: a fresh zeroed buffer
-  // per batch cost the sweep's serial thread page faults and a memset.
-  if (buf_size_ < n * layout_.row_size) {
-    buf_ = std::make_unique_for_overwrite<unsigned char[]>(n * layout_.row_size);
-    buf_size_ = n * layout_.row_size;
+  {
+    const std::lock_guard<std::mutex> lock(spare_mutex_);
+    if (!spare_.empty()) {
+      out.buf = std::move(spare_.back().first);
+      out.buf_size = spare_.back().second;
+      spare_.pop_back();
+    }
   }
-  unsigned char* const buf = buf_.get();
+  if (out.buf_size < n * layout_.row_size) {
+    out.buf = std::make_unique_for_overwrite<unsigned char[]>(n * layout_.row_size);
+    out.buf_size = n * layout_.row_size;
+  }
+  unsigned char* const buf = out.buf.get();
   run_parallel(parallel, parts.size(), [&](std::size_t k) { encode_rows(rows, layout_, partial_, buf, parts[k]); });
   // The pieces that start a chunk are filtered here, the last one too when
   // it ends short of a chunk (padded with zeros as HDF5 pads it: left to
@@ -281,23 +295,39 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
   // string in the global heap has an address only HDF5 can give: a piece
   // holding one goes through H5Dwrite.
   run_parallel(parallel, pieces.size(), [&](std::size_t k) {
-    Piece& p = pieces[k];
-    if ((rows_ + p.first) % chunk_rows != 0 || layout_.file_row_size == 0) return;
+    PreparedRows::Piece& p = pieces[k];
+    if ((out.first_row + p.first) % chunk_rows != 0 || layout_.file_row_size == 0) return;
     for (std::size_t j = k ? pieces[k - 1].parts_end : 0; j < p.parts_end; ++j)
       if (!parts[j].texts.empty()) return;
     p.chunk = file_chunk(layout_, buf, p.first, p.count, chunk_rows);
   });
-  std::size_t text_bytes = 0;
-  for (const EncodedRows& p : parts) text_bytes += p.text_bytes;
+  for (const EncodedRows& p : parts) out.text_bytes += p.text_bytes;
+  prepared_ += n;
+  return out;
+}
+
+std::function<void()> H5RunWriter::prepare_write(const std::vector<RunRow>& rows, const ParallelFor& parallel) {
+  // Shared: a std::function must be copyable, the rows are not.
+  auto prepared = std::make_shared<PreparedRows>(prepare(rows, parallel));
+  return [this, prepared] { write(std::move(*prepared)); };
+}
+
+void H5RunWriter::write(PreparedRows rows) {
+  if (rows.n == 0) return;
+  if (rows.first_row != rows_)
+    throw std::logic_error("rows prepared after row " + std::to_string(rows.first_row) + " cannot go to " + partial_ +
+                           ", which holds " + std::to_string(rows_) + " (an earlier write failed)");
+  const std::size_t n = rows.n;
   // Bound on what the write adds: the rows uncompressed and their text, the
   // last chunk rewritten elsewhere (compressed chunks that grow move) and its
   // old bytes in the journal, and metadata.
-  check_room(partial_, (n + 2 * chunk_rows) * layout_.row_size + text_bytes + (512u << 10));
+  check_room(partial_, (n + 2 * chunk_rows) * layout_.row_size + rows.text_bytes + (512u << 10));
   const hsize_t total = rows_ + n;
+  const unsigned char* const buf = rows.buf.get();
   session("write rows to", [&] {
     if (H5Dset_extent(dset_, &total) < 0) h5::fail("cannot extend /runs");
     Handle fspace{H5Dget_space(dset_), H5Sclose};
-    for (const Piece& p : pieces) {
+    for (const PreparedRows::Piece& p : rows.pieces) {
       const hsize_t start = rows_ + p.first, count = p.count;
       herr_t rc;
       if (!p.chunk.empty()) {
@@ -314,6 +344,8 @@ void H5RunWriter::append(const std::vector<RunRow>& rows, const ParallelFor& par
     }
   });
   rows_ = total;
+  const std::lock_guard<std::mutex> lock(spare_mutex_);
+  if (spare_.size() < 2) spare_.emplace_back(std::move(rows.buf), rows.buf_size);
 }
 
 void H5RunWriter::finish() {

@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
 #include <variant>
@@ -74,10 +75,21 @@ class H5RunWriter {
 
   void set_attribute(const std::string& name, const std::string& value);
   void set_attributes(const std::vector<Attribute>& attributes);  // in one write
-  // Appends rows in one write. The rows are encoded (and each whole chunk
-  // without variable-length text filtered: shuffle, deflate) piece by piece
-  // through `parallel` (none: on this thread); only the write is serial.
+  // Appends rows in one write: write(prepare(rows, parallel)).
   void append(const std::vector<RunRow>& rows, const ParallelFor& parallel = {});
+  // The two halves of an append, so that a sweep can write one batch's rows
+  // on a thread of its own while the next batch runs. prepare encodes the
+  // rows (and filters each whole chunk without variable-length text:
+  // shuffle, deflate) piece by piece through `parallel` (none: on this
+  // thread), after the rows prepared before; it touches no HDF5 state.
+  // write then writes them in one session: the serial part. Prepared rows
+  // are written in the order prepared, one write at a time; prepare may run
+  // while a write does. After a failed write, rows prepared since are
+  // refused (append forgets them, so a later append may try again).
+  PreparedRows prepare(const std::vector<RunRow>& rows, const ParallelFor& parallel = {});
+  void write(PreparedRows rows);
+  // prepare now; the function returned writes them (run_sweep's RowWrite).
+  std::function<void()> prepare_write(const std::vector<RunRow>& rows, const ParallelFor& parallel = {});
   // Closes and renames the partial file to its final name.
   void finish();
   std::size_t rows_written() const { return rows_; }
@@ -99,11 +111,14 @@ class H5RunWriter {
   H5Id file_ = -1, dset_ = -1, type_ = -1;
   std::size_t rows_ = 0;
   RowLayout layout_;
-  // Rows of an append, encoded; not zeroed when it grows (encode_rows
-  // zeroes each block on the thread that fills it), so that the first
-  // batch's pages are faulted in on every thread, not the sweep's serial one.
-  std::unique_ptr<unsigned char[]> buf_;
-  std::size_t buf_size_ = 0;
+  std::size_t prepared_ = 0;  // rows prepared: those the next prepare follows
+  // Buffers of written appends, for the next prepare: a fresh buffer per
+  // batch cost page faults. Not zeroed when one grows (encode_rows zeroes
+  // each block on the thread that fills it), so that the first batch's pages
+  // are faulted in on every thread, not the sweep's serial one. Two: one
+  // being written, one being prepared.
+  std::mutex spare_mutex_;
+  std::vector<std::pair<std::unique_ptr<unsigned char[]>, std::size_t>> spare_;
 };
 
 // Writes (or replaces) an attribute on `loc` (a file or group: an hid_t). Throws

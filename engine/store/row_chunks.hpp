@@ -7,6 +7,7 @@
 // Internal to the store's writer (h5_store.cpp).
 #include <cstddef>
 #include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,23 @@ struct EncodedRows {
 // not leave threads idle.
 void encode_rows(const std::vector<RunRow>& rows, const RowLayout& layout, const std::string& file, unsigned char* buf,
                  EncodedRows& part);
+
+// An append's rows made ready to write (H5RunWriter::prepare): encoded, each
+// piece that starts a chunk and holds no variable-length text filtered.
+// Owns all that the write reads (the buffer, the strings it points to), so
+// the rows it came from may be overwritten before it is written.
+struct PreparedRows {
+  struct Piece {
+    std::size_t first, count, parts_end;  // its blocks: parts[previous piece's parts_end, parts_end)
+    std::vector<unsigned char> chunk;     // the filtered chunk when the piece is one (else empty)
+  };
+  std::size_t first_row = 0, n = 0;  // they follow the file's first_row rows
+  std::vector<Piece> pieces;         // split at the file's chunk boundaries
+  std::vector<EncodedRows> parts;
+  std::unique_ptr<unsigned char[]> buf;  // n rows in memory layout
+  std::size_t buf_size = 0;
+  std::size_t text_bytes = 0;
+};
 
 // The chunk of rows [first, first + count) of `buf` (encoded, holding no
 // variable-length text) as the file stores it: laid out, shuffled and

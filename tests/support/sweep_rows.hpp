@@ -10,8 +10,10 @@ namespace chaosweep {
 inline std::vector<RunRow> sweep_rows(const SweepSpec& spec, const BatchEvaluator& evaluator,
                                       const SweepOptions& opt = {}) {
   std::vector<RunRow> all;
-  run_sweep(spec, evaluator, opt,
-            [&](const std::vector<RunRow>& rows) { all.insert(all.end(), rows.begin(), rows.end()); });
+  run_sweep(spec, evaluator, opt, [&](const std::vector<RunRow>& rows) -> RowWrite {
+    all.insert(all.end(), rows.begin(), rows.end());
+    return {};
+  });
   return all;
 }
 
