@@ -2,10 +2,10 @@
 // Runs a sweep's writes on a thread of their own, one at a time and in the
 // order handed over, so that batch b's rows are written while batch b + 1
 // runs: the write (HDF5, one thread) left the sweep's threads idle.
-// At most one write waits behind the running one: a hand-over waits for the
-// write before the last, which bounds the rows held in memory to two
-// batches. A write that throws stops the writes after it; its exception is
-// rethrown by the next hand_over or by wait.
+// At most one write waits behind the running one (a hand-over waits until
+// the one handed over before it has started), which bounds the rows held in
+// memory to about two batches. A write that throws stops the writes after
+// it; its exception is rethrown by the next hand_over or by wait.
 #include <condition_variable>
 #include <exception>
 #include <functional>
