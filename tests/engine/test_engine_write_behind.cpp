@@ -8,7 +8,6 @@
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "engine/run/sweep_runner.hpp"
@@ -16,6 +15,7 @@
 #include "engine/run/write_behind.hpp"
 #include "engine/spec/sweep_spec.hpp"
 #include "engine/store/h5_store.hpp"
+#include "tests/support/sweep_rows.hpp"
 #include "tests/support/test_util.hpp"
 
 using namespace chaosweep;
@@ -152,11 +152,7 @@ TEST(SweepRunner, AWriteThatFailsStopsTheRunsAndItsErrorReachesTheCaller) {
 TEST(StoreWriter, RowsPreparedAheadAreWrittenInOrderAsOneAppendWouldWriteThem) {
   TempDir tmp;
   const SweepSpec s = batches_of_cheap_runs();
-  std::vector<RunRow> rows;
-  run_sweep(s, ThreadBatchEvaluator(2), SweepOptions{}, [&](const std::vector<RunRow>& r) {
-    rows.insert(rows.end(), r.begin(), r.end());
-    return RowWrite{};
-  });
+  const std::vector<RunRow> rows = sweep_rows(s, ThreadBatchEvaluator(2));
   const auto piece = [&](std::size_t from, std::size_t to) {
     return std::vector<RunRow>(rows.begin() + std::ptrdiff_t(from), rows.begin() + std::ptrdiff_t(to));
   };
