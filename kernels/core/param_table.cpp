@@ -254,11 +254,7 @@ std::string ParamInfo::range_text() const {
 }
 
 std::string ParamInfo::check(double v) const {
-  if (std::isnan(v) && may_be_unset) return {};
-  bool ok = std::isfinite(v);
-  if (kind == Kind::choice) ok = ok && v >= 0 && v < double(choices.size()) && v == std::floor(v);
-  else ok = ok && v >= lo && v <= hi && (kind != Kind::integer || v == std::floor(v));
-  if (ok) return {};
+  if (allows(v)) return {};
   std::string shown = kind == Kind::choice ? std::string("index ") + format_number(v) : format_number(v);
   return std::string(name) + " = " + shown + " is out of range: must be " + range_text();
 }
@@ -282,7 +278,7 @@ const ParamInfo* find_param(std::string_view name) {
 
 std::string check_ranges(const RunParams& p) {
   for (const ParamInfo& info : param_table())
-    if (std::string e = info.check(info.get(p)); !e.empty()) return e;
+    if (const double v = info.get(p); !info.allows(v)) return info.check(v);
   return {};
 }
 

@@ -3,6 +3,7 @@
 // sweep-spec keys, JSON fields and HDF5 columns alike), its meaning, and its
 // allowed range. Pure data, so the kernels validate with the same bounds the
 // engine reports to the user.
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,6 +28,13 @@ struct ParamInfo {
   // so every earlier run keeps the hash its files hold.
   bool hashed_at_default = true;
 
+  // Whether v is allowed (check without the message: every run is checked,
+  // and the message's string cost a run's check more than the test).
+  bool allows(double v) const {
+    if (std::isnan(v)) return may_be_unset;
+    if (kind == Kind::choice) return v >= 0 && v < double(choices.size()) && v == std::floor(v);
+    return std::isfinite(v) && v >= lo && v <= hi && (kind != Kind::integer || v == std::floor(v));
+  }
   // Empty when v is allowed, else a message naming the parameter and its range.
   std::string check(double v) const;
   std::string range_text() const;

@@ -136,6 +136,47 @@ TEST(KernelMath, InlineHypotIsTheCLibrarysHypot) {
       EXPECT_TRUE(same(x, y)) << x << ", " << y << ": " << inline_hypot(x, y) << " vs " << std::hypot(x, y);
 }
 
+// check_ranges (every run's check) tests each value inline (ParamInfo::allows)
+// and builds the message only for a refused one: every parameter, each way a
+// value can leave its range, is refused with its name and range; its
+// bounds are allowed.
+TEST(ParamTable, CheckRangesRefusesEveryParameterOutsideItsRangeByName) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  int refused = 0;
+  for (const ParamInfo& info : param_table()) {
+    std::vector<double> outside, inside;
+    if (info.kind == ParamInfo::Kind::choice) {
+      outside = {double(info.choices.size()), -1.0};
+      inside = {0.0, double(info.choices.size() - 1)};
+    } else {
+      inside = {info.lo, info.hi};
+      if (std::isfinite(info.lo) && info.lo > -1e15) outside.push_back(info.lo - 1.0);
+      if (std::isfinite(info.hi) && info.hi < 1e15) outside.push_back(info.hi + 1.0);
+      if (info.kind == ParamInfo::Kind::real) {
+        outside.push_back(inf);
+        outside.push_back(-inf);
+        if (!info.may_be_unset) outside.push_back(nan);
+        else inside.push_back(nan);
+      }
+    }
+    for (double v : outside) {
+      RunParams p;
+      info.set(p, v);
+      if (std::isnan(v) && !std::isnan(info.get(p))) continue;  // ic_*: an unset one reads as its default
+      const std::string e = check_ranges(p);
+      EXPECT_EQ(e.rfind(std::string(info.name) + " = ", 0), 0u) << info.name << " = " << v << ": " << e;
+      EXPECT_NE(e.find(info.range_text()), std::string::npos) << e;
+      ++refused;
+    }
+    for (double v : inside) {
+      RunParams p;
+      info.set(p, v);
+      EXPECT_EQ(check_ranges(p), "") << info.name << " = " << v;
+    }
+  }
+  EXPECT_GT(refused, int(param_table().size()));
+}
+
 TEST(SincosShift, CarryFormIsExactToRoundingUpToItsBound) { EXPECT_LT(max_shift_error<ShiftForm::carry>(), 3.5e-16); }
 
 TEST(SincosShift, TinyFormIsExactToRoundingUpToItsBound) { EXPECT_LT(max_shift_error<ShiftForm::tiny>(), 3.5e-16); }
