@@ -28,8 +28,9 @@ struct ParamInfo {
   // so every earlier run keeps the hash its files hold.
   bool hashed_at_default = true;
 
-  // Whether v is allowed (check without the message: every run is checked,
-  // and the message's string cost a run's check more than the test).
+  // Whether v is allowed: check's test, inline and without the message
+  // (every run checks every parameter; the out-of-line call returning a
+  // string cost 3% of a sweep of short runs).
   bool allows(double v) const {
     if (std::isnan(v)) return may_be_unset;
     if (kind == Kind::choice) return v >= 0 && v < double(choices.size()) && v == std::floor(v);
