@@ -1,7 +1,9 @@
 #include "kernels/core/coverage_grid.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 
@@ -46,13 +48,33 @@ double visit_evenness(const CoverageGrid& g) {
   const auto free_visits = [&](auto&& add) {
     for (int j = 0; j < g.ny(); ++j)
       for (int i = 0; i < g.nx(); ++i)
-        if (g.at(i, j) != CoverageGrid::blocked) add(double(v[std::size_t(j) * std::size_t(g.nx()) + std::size_t(i)]));
+        if (g.at(i, j) != CoverageGrid::blocked) add(v[std::size_t(j) * std::size_t(g.nx()) + std::size_t(i)]);
   };
-  double total = 0, h = 0;
-  free_visits([&](double n) { total += n; });
-  if (total == 0) return 0.0;
-  free_visits([&](double n) {
-    if (n > 0) h -= (n / total) * std::log(n / total);
+  // Whole counts: their sum is exact as an integer, the double a cell-by-
+  // cell sum of doubles gave (exact below 2^53), without its chain of
+  // dependent additions.
+  std::uint64_t count = 0;
+  free_visits([&](std::uint32_t n) { count += n; });
+  if (count == 0) return 0.0;
+  const double total = double(count);
+  // A cell's term depends only on its count, a small whole number shared by
+  // many cells: each count's term is computed once, by the same operations
+  // (so to the same bits), and summed in the same order. A logarithm per
+  // cell was a tenth of a sweep of short runs on a 200 m SR 1 map.
+  constexpr std::uint32_t memo_counts = 1024;
+  std::array<double, memo_counts> memo;
+  memo.fill(std::numeric_limits<double>::quiet_NaN());
+  const auto term = [&](double n) { return (n / total) * std::log(n / total); };
+  double h = 0;
+  free_visits([&](std::uint32_t n) {
+    if (n == 0) return;
+    if (n >= memo_counts) {
+      h -= term(double(n));
+      return;
+    }
+    double& m = memo[n];
+    if (std::isnan(m)) m = term(double(n));
+    h -= m;
   });
   return h / std::log(double(g.free_cells()));
 }

@@ -5,6 +5,7 @@
 // paths whose values are known, and on runs of the planners.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -147,4 +148,30 @@ TEST(PathMetrics, TheLawnmowerBaselineCoversAtASteadyPaceSoItsCoverageAreaIsAbou
   // One new cell per metre from the start's centre: the i-th at about
   // i - 0.5 s, a mean of about (n - 1) / 2 s over n = 90 cells, T_opt = 90 s.
   EXPECT_NEAR(r.coverage_area, 0.49, 0.01);
+}
+
+// visit_evenness computes each count's term once (counts below 1024) and
+// sums the cells' terms in row order: bit for bit the sum of
+// (n / total) ln(n / total) over the free cells, for counts that repeat,
+// counts from 1 up to past the memo's end, and cells never entered.
+TEST(PathMetrics, EvennessIsTheCellByCellSumBitForBitWhateverTheCounts) {
+  const Environment env = square_map(40.0, {{10, 10, 20, 20}});
+  CoverageGrid g(env, 1.0);
+  // Back and forth between two neighbours of each row: counts 1 .. 3000.
+  for (int j = 0; j < g.ny(); j += 3) {
+    const int i = (j * 7) % (g.nx() - 1);
+    if (g.at(i, j) == CoverageGrid::blocked || g.at(i + 1, j) == CoverageGrid::blocked) continue;
+    const int n = j == 0 ? 3000 : j % 2 ? 1 + j : 1023 + j % 4;
+    for (int k = 0; k < n; ++k) g.mark_cell(i + (k % 2), j);
+  }
+  double total = 0, h = 0;
+  std::vector<double> counts;
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i)
+      if (g.at(i, j) != CoverageGrid::blocked) counts.push_back(double(g.visits()[std::size_t(j) * g.nx() + i]));
+  for (double n : counts) total += n;
+  for (double n : counts)
+    if (n > 0) h -= (n / total) * std::log(n / total);
+  ASSERT_GT(*std::max_element(counts.begin(), counts.end()), 1024.0);
+  EXPECT_EQ(visit_evenness(g), h / std::log(double(g.free_cells())));
 }
