@@ -90,12 +90,13 @@ void LaneBinding::write_robot(LaneArrays& a, int l) {
   // A bouncing robot's displacement takes signs the vector code does not
   // apply: its steps all go to the scalar path (correct first; fast later).
   const bool bounces = run_.p_.obstacle_response == ObstacleResponse::reflect && !run_.env_.obstacles.empty();
-  // The lanes mark a cell entry as a segment does (mark_entered stamps the
-  // cell left and the one entered); a point (sampling = points) marks only
-  // the cell it ends in, which differs once Eq. 5's window stamps count:
-  // those runs' entries go to the scalar path.
-  const bool point_entries = run_.p_.sampling == Sampling::points && run_.p_.map_zoning;
-  a.fast[l] = run_.trace_ != nullptr || bounces ? 0.0 : point_entries ? 1.0 : 2.0;
+  // The lanes mark cells as a segment does: an entry stamps Eq. 5's window
+  // on the cell left and the one entered, a step within a cell stamps
+  // nothing. A point (sampling = points) stamps the cell each step ends in,
+  // so a windowed run's counts differ (both with entries made here and with
+  // entries left to the scalar path): those runs take the scalar path.
+  const bool point_windows = run_.p_.sampling == Sampling::points && run_.p_.map_zoning;
+  a.fast[l] = run_.trace_ != nullptr || bounces || point_windows ? 0.0 : 2.0;
   // The band RobotMotion::move folds into: mirror_eq7's triangle_fold(u,
   // 0 + fo, lx - fo), or the fold boundary's triangle_fold(ux, 0, lx).
   const bool fold = run_.p_.boundary == Boundary::fold;

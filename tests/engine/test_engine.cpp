@@ -657,6 +657,7 @@ case = [
   { label = "invalid", env = "one_square", start = [8, 8] },
   { label = "points", sampling = "points", f = 4 },
   { label = "mz-points", sampling = "points", map_zoning = 1, c = 0.8 },
+  { label = "mz-points-distance-first", sampling = "points", map_zoning = 1, c = 0.8, zone_order = "distance" },
   { label = "full-trig", dt = 0.5 },
   { label = "obstacles-mirror", obstacle_response = "mirror", env = "five_squares", start = [4.8, 1.6] },
   { label = "obstacles-bounce", obstacle_response = "reflect", env = "five_squares", start = [4.8, 1.6] },
