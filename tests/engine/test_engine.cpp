@@ -756,14 +756,9 @@ env = ["empty", "five_squares"]
 )",
                                        "x");
   ASSERT_EQ(s.size(), 192);
-  EnvironmentCache cache;
-  std::vector<RunTuple> tuples;
-  for (std::int64_t i = 0; i < s.size(); ++i) tuples.push_back(resolve_run(i, s.run(i), cache));
-  std::vector<RunRow> reference, lanes;
-  for (const RunTuple& t : tuples) reference.push_back({t, SerialBatchEvaluator().evaluate(t)});
-  std::vector<RunResult> results(tuples.size());
-  ASSERT_EQ(ThreadBatchEvaluator(2).evaluate(tuples, results), tuples.size());
-  for (std::size_t k = 0; k < tuples.size(); ++k) lanes.push_back({tuples[k], results[k]});
+  const std::vector<RunRow> reference = sweep_rows(s, SerialBatchEvaluator());
+  const std::vector<RunRow> lanes = sweep_rows(s, ThreadBatchEvaluator(2));
+  ASSERT_EQ(lanes.size(), 192u);
   std::string diff;
   EXPECT_TRUE(same_rows(reference, lanes, diff)) << diff;
   int zoned = 0;
