@@ -150,10 +150,11 @@ TEST(CliRun, TraceWritesTheTrajectoryAsCsv) {
 
 namespace {
 
-// 12,000 cheap runs: about a second on one thread, long enough to interrupt
-// between its batches.
-const std::string long_sweep = cheap_sweep(24, 500);
-constexpr std::int64_t long_sweep_runs = 12000;
+// 24,000 cheap runs: about half a second on one thread, long enough to
+// interrupt between its batches (12,000 took 0.28 s once rows were written
+// behind the runs, and a kill then came after the sweep had finished).
+const std::string long_sweep = cheap_sweep(24, 1000);
+constexpr std::int64_t long_sweep_runs = 24000;
 
 // Rows equal in every column but wall time (which is no part of a run's
 // result). Integers are exact as doubles (< 2^53).
@@ -274,7 +275,7 @@ TEST(CliSweep, ResumeIsRefusedWhenAnEnvironmentFileChangedNamingIt) {
 
 TEST(CliSweep, SecondSweepOnTheSameOutputIsRefused) {
   TempDir tmp;
-  // Four times long_sweep: the first sweep must outlast both refused
+  // Twice long_sweep: the first sweep must outlast both refused
   // attempts (each waits out OutputLock's retries), and long_sweep alone
   // ended before the second on an idle machine.
   const std::string spec = cheap_sweep(24, 2000);
