@@ -18,10 +18,12 @@ struct LaneArrays {
   // The run's step_scale: (h/2) A, (h/2) B, (h/2) C and h_pos / 6.
   alignas(64) double kA[max_lanes], kB[max_lanes], kC[max_lanes], pos6[max_lanes];
   alignas(64) double small[max_lanes];  // 1: small-shift mode (arnold_flow.hpp)
-  // The system every lane runs: 0 the Arnold flow (the arrays above), else a
-  // flow of system_list.hpp, whose lanes hold its state in x, y, z as the
-  // run labels it, its coefficients in kA, kB, kC, kD, the heading
-  // coordinate ds (1, 2, 3), the step h and the robot's distance per step h_pos.
+  // The group every lane runs (lane_group.hpp): 0 the Arnold flow (the
+  // arrays above), else a system of system_list.hpp, whose lanes hold its
+  // state in x, y, z as the run labels it, its coefficients in kA, kB, kC,
+  // kD, the heading coordinate ds (1, 2, 3), the step h and the robot's
+  // distance per step h_pos; or the Logistic planner (LogisticMap::lane_step:
+  // x, kA, kB, kC and h_pos).
   int system = 0;
   alignas(64) double kD[max_lanes], ds[max_lanes], h[max_lanes], h_pos[max_lanes];
   // The step's robot displacement.

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "kernels/core/metrics.hpp"
+#include "kernels/systems/logistic_map.hpp"
 
 namespace chaosweep {
 
@@ -67,12 +68,34 @@ void LaneBinding::write_carried_step(LaneArrays& a, int l) const {
   a.small[l] = F::small(run_.fk_, run_.h_) ? 1.0 : 0.0;
 }
 
+// The Logistic planner's (LogisticMap::lane_step): its iterate, r, the
+// segment's branch, the fixed point and the robot's distance per point.
+void LaneBinding::write_logistic_step(LaneArrays& a, int l) const {
+  a.x[l] = logistic_x_;
+  a.y[l] = a.z[l] = 0.0;
+  a.sx[l] = a.sy[l] = a.sz[l] = 0.0;
+  a.cx[l] = a.cy[l] = a.cz[l] = 1.0;
+  a.kA[l] = run_.p_.logistic_r;
+  a.kB[l] = LogisticMap::branch(run_.rightwards_);
+  a.kC[l] = LogisticMap::fixed_point(run_.p_.logistic_r);
+  a.kD[l] = 0.0;
+  a.ds[l] = 1.0;
+  a.h[l] = run_.p_.dt_c;
+  a.h_pos[l] = run_.p_.dt_c * run_.p_.v;  // logistic_loop's factor of the heading
+  a.pos6[l] = 0.0;
+  a.small[l] = 0.0;
+}
+
 void LaneBinding::write_lane(LaneArrays& a, int l) {
-  with_system(run_.sys_, [&](auto tag) {
-    using F = typename decltype(tag)::type;
-    if constexpr (CarriedSystem<F>) write_carried_step<F>(a, l);
-    else write_system_step(a, l);
-  });
+  if (logistic_) {
+    write_logistic_step(a, l);
+  } else {
+    with_system(run_.sys_, [&](auto tag) {
+      using F = typename decltype(tag)::type;
+      if constexpr (CarriedSystem<F>) write_carried_step<F>(a, l);
+      else write_system_step(a, l);
+    });
+  }
   write_robot(a, l);
 }
 
@@ -80,7 +103,7 @@ void LaneBinding::write_robot(LaneArrays& a, int l) {
   a.X[l] = run_.robot_.x();
   a.Y[l] = run_.robot_.y();
   a.t[l] = run_.t_;
-  a.fh[l] = run_.p_.f * run_.h_;  // the clock step after_move adds
+  a.fh[l] = logistic_ ? run_.p_.dt_c : run_.p_.f * run_.h_;  // the clock step after_move adds
   a.budget[l] = run_.budget_;
   a.stuck_time[l] = run_.p_.stuck_time > 0 ? run_.p_.stuck_time : std::numeric_limits<double>::infinity();
   a.t_last_new[l] = run_.t_last_new_;
@@ -175,9 +198,15 @@ void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
 
 bool LaneBinding::lane_step(LaneArrays& a, int l) {
   take_lane_progress(a, l);
-  const bool segment_or_end = run_.arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);
+  bool segment_or_end;
+  if (logistic_) {
+    logistic_x_ = a.x[l];
+    segment_or_end = run_.logistic_step_done(a.y[l] == 0.0, a.dX[l], a.dY[l]);  // y: NaN when unusable
+  } else {
+    segment_or_end = run_.arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);
+  }
   if (run_.ended_) return true;
-  if (segment_or_end) {  // DSindex or the robot may have changed: all of it
+  if (segment_or_end) {  // DSindex, the branch or the robot may have changed: all of it
     write_lane(a, l);
     return false;
   }
@@ -198,7 +227,7 @@ bool LaneBinding::lane_step(LaneArrays& a, int l) {
 
 bool LaneBinding::lane_covered(LaneArrays& a, int l) {
   take_lane_progress(a, l);
-  run_.u_ = lane_state(a, l);
+  if (!logistic_) run_.u_ = lane_state(a, l);
   run_.end(Status::ok);  // after_move's first check that holds (the integrator checked the position)
   return true;
 }

@@ -14,14 +14,14 @@
 namespace chaosweep {
 
 // Step-driven use of a PlannerRun by the lane integrators, which compute
-// fixed-step RK4 steps of many runs at once: run().start(), write_lane(),
+// fixed-step RK4 steps (or Logistic points) of many runs at once: run().start(), write_lane(),
 // then for every step the integrator flags (see LaneArrays::flagged)
 // lane_step(), until it returns true (the run ended); then run().finish().
 class LaneBinding {
  public:
   // Expects what PlannerRun expects; a lane run has no trace.
   LaneBinding(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r)
-      : run_(p, env, grid, r, nullptr) {}
+      : run_(p, env, grid, r, nullptr), logistic_(p.planner == Planner::logistic), logistic_x_(run_.logistic_state()) {}
   PlannerRun& run() { return run_; }
 
   void write_lane(LaneArrays& a, int l);
@@ -45,6 +45,7 @@ class LaneBinding {
   template <class F>
   void write_carried_step(LaneArrays& a, int l) const;
   void write_system_step(LaneArrays& a, int l) const;
+  void write_logistic_step(LaneArrays& a, int l) const;
   void write_robot(LaneArrays& a, int l);
   // Lane l's cell and the window's distinct count, from the run.
   void lane_cell(LaneArrays& a, int l) const;
@@ -54,6 +55,11 @@ class LaneBinding {
   void lane_box(LaneArrays& a, int l) const;
 
   PlannerRun run_;
+  // The Logistic planner: its map runs in the lanes (LogisticMap::lane_step),
+  // from x0 (the run's, jittered), its iterate kept here between the lanes'
+  // calls; the run's own LogisticOrbit (and its shared blocks) is unused.
+  bool logistic_;
+  double logistic_x_;
 };
 
 }  // namespace chaosweep

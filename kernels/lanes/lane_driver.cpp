@@ -10,6 +10,7 @@
 
 #include "kernels/lanes/lane_arrays.hpp"
 #include "kernels/lanes/lane_binding.hpp"
+#include "kernels/lanes/lane_group.hpp"
 #include "kernels/planners/planner.hpp"
 
 namespace chaosweep {
@@ -17,8 +18,11 @@ namespace chaosweep {
 LaneSink::~LaneSink() = default;
 
 bool lane_eligible(const RunParams& p) {
-  return p.planner == Planner::arnold && p.integrator == Integrator::rk4 && p.system >= 0 && p.system < system_count;
+  return p.planner == Planner::logistic ||
+         (p.planner == Planner::arnold && p.integrator == Integrator::rk4 && p.system >= 0 && p.system < system_count);
 }
+
+int lane_group(const RunParams& p) { return p.planner == Planner::logistic ? logistic_lane_group : p.system; }
 
 namespace {
 
@@ -30,7 +34,7 @@ void record_error(RunResult& r, const char* what) {
   r.message = what;
 }
 
-// Runs the lanes cannot take (step doubling, the Logistic planner).
+// Runs the lanes cannot take (step doubling, the other planners).
 void run_scalar(const BatchItem& it, RunResult& r) {
   const auto t0 = clock_type::now();
   try {
@@ -53,14 +57,14 @@ class LaneDriver final : public LaneSink {
   LaneDriver(const LaneDriver&) = delete;
   LaneDriver& operator=(const LaneDriver&) = delete;
 
-  // The lanes run one system at a time (LaneArrays::system): once the
-  // integrator has no active lane, the runs of other systems taken on the
-  // way start, a system at a time. False when none is left.
+  // The lanes run one group at a time (LaneArrays::system, lane_group.hpp):
+  // once the integrator has no active lane, the runs of other groups taken
+  // on the way start, a group at a time. False when none is left.
   bool next_system() {
     for (;;) {
       int k = 0;
-      while (k < system_count && pending_[std::size_t(k)].empty()) ++k;
-      if (k == system_count) return false;
+      while (k < lane_group_count && pending_[std::size_t(k)].empty()) ++k;
+      if (k == lane_group_count) return false;
       system_ = k;
       a_.system = k;
       for (int l = 0; l < a_.lanes; ++l) load(l);
@@ -185,9 +189,10 @@ class LaneDriver final : public LaneSink {
         count(r);
         continue;
       }
-      if (system_ < 0) a_.system = system_ = it.params->system;  // the first lane run's
-      if (it.params->system != system_) {                        // for a later turn of its system's (next_system)
-        pending_[std::size_t(it.params->system)].push_back(s.item);
+      const int group = lane_group(*it.params);
+      if (system_ < 0) a_.system = system_ = group;  // the first lane run's
+      if (group != system_) {                        // for a later turn of its group's (next_system)
+        pending_[std::size_t(group)].push_back(s.item);
         ++held_;
         continue;
       }
@@ -256,7 +261,7 @@ class LaneDriver final : public LaneSink {
   std::size_t claimed_ = 0, claimed_end_ = 0;  // runs claimed from the queue, not yet taken
   std::int64_t done_ = 0, not_ok_ = 0;         // counted here, not yet in q_.done and q_.not_ok
   double counted_wall_ = 0;                    // the wall time of those runs
-  std::vector<std::deque<std::size_t>> pending_ = std::vector<std::deque<std::size_t>>(std::size_t(system_count));
+  std::vector<std::deque<std::size_t>> pending_ = std::vector<std::deque<std::size_t>>(std::size_t(lane_group_count));
 };
 
 }  // namespace

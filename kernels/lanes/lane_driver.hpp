@@ -1,8 +1,8 @@
 #pragma once
 // Runs a batch of runs through the lane integrators: each lane holds one run,
 // and when a run ends the next run of the batch takes its lane at once.
-// Runs the lanes cannot take (step doubling, the Logistic planner) run on the
-// scalar reference path. Results land in the slot of their run, whatever the
+// Runs the lanes cannot take (step doubling, planners other than the
+// seed-000 family's) run on the scalar reference path. Results land in the slot of their run, whatever the
 // lane, target or order: a pure function of each run's parameters.
 #include <atomic>
 #include <cstddef>
@@ -44,7 +44,10 @@ struct RunQueue {
 };
 void run_queue(RunQueue& queue, SimdTarget target);
 
-// True when a run goes through the lanes (fixed-step RK4, Arnold planner).
+// True when a run goes through the lanes (the Arnold planner with fixed-step
+// RK4, the Logistic planner).
 bool lane_eligible(const RunParams& p);
+// The lanes' group of an eligible run (lane_group.hpp).
+int lane_group(const RunParams& p);
 
 }  // namespace chaosweep

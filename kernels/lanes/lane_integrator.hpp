@@ -5,9 +5,11 @@
 // step's common case (fast_path, mark_entered) until a step leaves the sink
 // work, store, let the sink handle it. Include only from
 // lane_kernel_<target>.cpp.
+#include <type_traits>
+
 #include "kernels/core/boundary.hpp"
 #include "kernels/lanes/lane_arrays.hpp"
-#include "kernels/systems/system_list.hpp"
+#include "kernels/lanes/lane_group.hpp"
 
 namespace chaosweep {
 
@@ -231,6 +233,14 @@ inline SystemInput<V> load_system_input(const LaneArrays& a, int o) {
           lane_load<V>(a.h_pos + o)};
 }
 
+// One step of a group's lanes that carry nothing: a listed system's
+// (system_step) or the Logistic planner's.
+template <class F, class V>
+inline SystemStep<V> uncarried_step(const SystemInput<V>& in) {
+  if constexpr (std::is_same_v<F, LogisticMap>) return LogisticMap::lane_step(in.u, in.k, in.h_pos);
+  else return system_step<F>(in.u, in.k, in.hs, in.h, in.h_pos);
+}
+
 // Brings the step and segment counts up to date after `passes` steps of
 // which every lane took all but the last, and the lanes in `applied` that
 // one too (a flagged lane's step is the sink's to count).
@@ -266,8 +276,8 @@ struct StepsDone {
 
 // Steps the lanes from the arrays' state, keeping it in registers, until a
 // step leaves the sink work; stores every lane's state after that step.
-// F: the system of system_list.hpp every lane runs; a carried system by its
-// own step (F::step, F::step2 when Staged), any other by system_step
+// F: the system of the lanes' group (lane_group.hpp); a carried system by
+// its own step (F::step, F::step2 when Staged), any other by uncarried_step
 // (Staged ignored).
 template <class V, int N, bool Staged, bool General, class F>
 inline StepsDone steps_until_sink(LaneArrays& a) {
@@ -288,7 +298,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
     Rk4Step<V> s[N];
     if constexpr (!carried) {
       for (int k = 0; k < N; ++k) {
-        const SystemStep<V> f = system_step<F>(fin[k].u, fin[k].k, fin[k].hs, fin[k].h, fin[k].h_pos);
+        const SystemStep<V> f = uncarried_step<F>(fin[k]);
         s[k].u = f.u;
         const V zero = lane::splat<V>(0.0);
         s[k].t = Trig3<V>{zero, zero, zero, zero, zero, zero};  // it carries nothing
@@ -336,15 +346,16 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
 // lanes that are all under the mirror boundary on open maps and one for the
 // others.
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
-// The lanes all run one system (a.system, LaneArrays::system): a carried
-// system's own step (the Arnold flow's), or one system_step per vector.
+// The lanes all run one group (a.system, LaneArrays::system, lane_group.hpp):
+// a carried system's own step (the Arnold flow's), or one uncarried_step per
+// vector.
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
     bool general = false;
     for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.obstacles[l];
     StepsDone d;
-    with_system(a.system, [&](auto tag) {
+    with_lane_group(a.system, [&](auto tag) {
       using F = typename decltype(tag)::type;
       d = general ? steps_until_sink<V, N, Staged, true, F>(a) : steps_until_sink<V, N, Staged, false, F>(a);
     });

@@ -634,8 +634,10 @@ TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries (also with steps longer than the
   // map, which the lanes fold in full), obstacles (with and without map
   // zoning, under both boundaries, every obstacle response; a map of many,
-  // indexed; obstacles closer than 2 fo, whose margins overlap), the scalar-only paths
-  // (step doubling, Logistic, Chebyshev), a run outside small-shift mode (dt = 0.5),
+  // indexed; obstacles closer than 2 fo, whose margins overlap), the Logistic
+  // planner (its own lanes: jitter, fold, points, a stuck end, an orbit that
+  // reaches a fixed point at its second point), the scalar-only paths (step
+  // doubling, Chebyshev), a run outside small-shift mode (dt = 0.5),
   // an invalid run and the flows and maps of kernels/systems/ (each system's
   // runs in lanes of their own), mixed in one batch.
   const SweepSpec s = parse_sweep_spec(R"(
@@ -677,6 +679,10 @@ case = [
   { label = "chua-mz-is", system = "chua", sys_a = 9.5, index_switching = 1, map_zoning = 1, c = 0.8, dt = 0.002, f = 50, ds_index = 1, env = "one_square", start = [1, 8] },
   { label = "chirikov", system = "chirikov", ds_index = 1, dt = 1 },
   { label = "chirikov-is-obstacles", system = "chirikov", ds_index = 2, index_switching = 1, dt = 0.5, env = "five_squares", start = [4.8, 1.6] },
+  { label = "logistic-obstacles-jitter", planner = "logistic", logistic_jitter = 1e-6, seed = 5, v = 0.9, dt_c = 0.07, env = "five_squares", start = [4.8, 1.6] },
+  { label = "logistic-fold-points", planner = "logistic", boundary = "fold", sampling = "points", env = "one_square", start = [1, 8] },
+  { label = "logistic-mirror-stuck", planner = "logistic", obstacle_response = "mirror", stuck_time = 40, env = "five_squares", start = [4.8, 1.6] },
+  { label = "logistic-fixed-point", planner = "logistic", logistic_x0 = 0.5 },
 ]
 [fixed]
 size = 16
@@ -718,12 +724,19 @@ A = [0.45, 0.5]
   EXPECT_GT(ok, 5);  // most of these runs reach dc: the comparison covers whole runs
   EXPECT_EQ(reference[28].result.status, Status::invalid);                             // case 14 of 17, A = 0.45
   EXPECT_EQ(reference[26].result.status, Status::ok) << reference[26].result.message;  // the Chebyshev run
-  // The flows' and maps' runs (the last six cases, mixed with Arnold runs in
-  // every batch: the lanes take one system at a time): the Lorenz and
-  // Chirikov ones reach dc, the others run to the budget; both compare whole
-  // runs.
+  const auto labelled = [&](std::string_view label) {
+    return std::find_if(reference.begin(), reference.end(), [&](const RunRow& r) { return r.tuple.label == label; })
+        ->result;
+  };
+  EXPECT_EQ(labelled("logistic-fixed-point").status, Status::diverged);  // x0 = 0.5: x1 = 1, x2 = 0
+  EXPECT_EQ(labelled("logistic-fixed-point").steps, 1);
+  EXPECT_EQ(labelled("logistic-mirror-stuck").status, Status::stuck);
+  // The flows' and maps' runs (the six cases before the Logistic ones,
+  // mixed with Arnold runs in every batch: the lanes take one system at a
+  // time): the Lorenz and Chirikov ones reach dc, the others run to the
+  // budget; both compare whole runs.
   int systems_ok = 0;
-  for (std::size_t i = reference.size() - 12; i < reference.size(); ++i) {
+  for (std::size_t i = reference.size() - 20; i < reference.size() - 8; ++i) {
     systems_ok += reference[i].result.status == Status::ok;
     EXPECT_GT(reference[i].result.visited_cells, 40) << reference[i].tuple.label;
   }

@@ -26,29 +26,25 @@ SetupKey logistic_orbit_key(double r, double x0) {
 }  // namespace
 
 LogisticOrbit::LogisticOrbit(double r, double x0)
-    : r_(r), x_(x0), orbit_(logistic_orbit_key(r, x0), x0, logistic_orbit_cache()) {}
+    : r_(r),
+      fixed_(LogisticMap::fixed_point(r)),
+      x_(x0),
+      orbit_(logistic_orbit_key(r, x0), x0, logistic_orbit_cache()) {}
 
 LogisticOrbit::Heading LogisticOrbit::draw(double& x, bool rightwards) const {
-  LogisticMap map{x, r_};
   Heading h;
-  h.ok = map.step();
-  x = h.x = map.x;
-  const double th = map.heading(rightwards);
-  h.cos = std::cos(th);
-  h.sin = std::sin(th);
+  x = h.x = LogisticMap::iterate(x, r_);
+  h.ok = LogisticMap::usable(x, fixed_);
+  LogisticMap::heading(x, LogisticMap::branch(rightwards), h.cos, h.sin);
   return h;
 }
 
 LogisticOrbit::Value LogisticOrbit::both(double& x) const {
-  LogisticMap map{x, r_};
   Value v;
-  v.ok = map.step();
-  x = v.x = map.x;
-  const double right = map.heading(true), left = map.heading(false);
-  v.cos_right = std::cos(right);
-  v.sin_right = std::sin(right);
-  v.cos_left = std::cos(left);
-  v.sin_left = std::sin(left);
+  x = v.x = LogisticMap::iterate(x, r_);
+  v.ok = LogisticMap::usable(x, fixed_);
+  LogisticMap::heading(x, LogisticMap::rightwards, v.cos_right, v.sin_right);
+  LogisticMap::heading(x, LogisticMap::leftwards, v.cos_left, v.sin_left);
   return v;
 }
 

@@ -4,7 +4,8 @@
 // of the robot's heading on either branch; the later iterates shared by the
 // runs of a sweep (core/shared_orbit.hpp). MapZoning's transit points draw
 // it from one x0 in every run (Table 1: no jitter), and their C-library
-// sincos was an eighth of the Table 1 search (issue 20).
+// sincos was an eighth of the Table 1 search (issue 20; the trigonometry is
+// sincos.hpp's since, see systems/logistic_map.hpp).
 #include "kernels/core/shared_orbit.hpp"
 
 namespace chaosweep {
@@ -42,7 +43,7 @@ class LogisticOrbit {
   Heading draw(double& x, bool rightwards) const;
   Value both(double& x) const;
 
-  double r_, x_;
+  double r_, fixed_, x_;  // fixed_: LogisticMap::fixed_point(r_)
   SharedOrbit<Value> orbit_;
 };
 

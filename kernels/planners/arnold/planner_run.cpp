@@ -78,6 +78,7 @@ void PlannerRun::start() {
   // The start cell alone may already satisfy a tiny dc.
   if (grid_.visited_cells() >= needed_) end(Status::ok);
   else if (p_.planner == Planner::arnold) begin_segment();
+  else begin_logistic_segment();
 }
 
 void PlannerRun::finish() {
@@ -182,22 +183,30 @@ void PlannerRun::arnold_step() {
 // ----------------------------------------------------- Logistic map only
 
 void PlannerRun::logistic_loop() {
-  while (!ended_) logistic_segment();
+  while (!ended_) {
+    const LogisticOrbit::Heading h = logistic_.next(rightwards_);
+    logistic_step_done(h.ok, p_.dt_c * p_.v * h.cos, p_.dt_c * p_.v * h.sin);
+  }
 }
 
-long PlannerRun::logistic_segment() {
+void PlannerRun::begin_logistic_segment() {
   ++r_.segments;
-  const long before = grid_.visited_cells();
   // The heading branch is chosen once per segment: rightwards from the left half.
-  const bool rightwards = robot_.x() < 0.5 * env_.lx;
-  for (int i = 0; i < p_.niter && !ended_; ++i) {
-    const LogisticOrbit::Heading h = logistic_.next(rightwards);
-    if (!h.ok) return end(Status::diverged, "Logistic map reached a fixed point"), 0;
-    robot_.move(p_.dt_c * p_.v * h.cos, p_.dt_c * p_.v * h.sin);
-    ++r_.steps;
-    after_move(p_.dt_c, SegmentKind::logistic);
+  rightwards_ = robot_.x() < 0.5 * env_.lx;
+  seg_step_ = 0;
+}
+
+bool PlannerRun::logistic_step_done(bool ok, double dX, double dY) {
+  if (!ok) {
+    end(Status::diverged, "Logistic map reached a fixed point");
+    return true;
   }
-  return grid_.visited_cells() - before;
+  robot_.move(dX, dY);
+  ++r_.steps;
+  if (after_move(p_.dt_c, SegmentKind::logistic)) return true;
+  if (++seg_step_ < p_.niter) return false;
+  begin_logistic_segment();
+  return true;
 }
 
 }  // namespace chaosweep

@@ -35,6 +35,11 @@ class PlannerRun {
 
   // The scalar reference path's step, exposed for the lane driver's tests.
   bool arnold_step_done(const Vec3<double>& u, const Trig3<double>& t, double dX, double dY);
+  // The Logistic planner's step: its iterate usable (else the run ends
+  // diverged), the robot's displacement. True when the run ended or a new
+  // segment began (its branch chosen: rightwards()).
+  bool logistic_step_done(bool ok, double dX, double dY);
+  bool rightwards() const { return rightwards_; }
 
   // Single mechanisms, public so tests can drive them on hand-made cases;
   // defined in map_zoning.cpp (Algorithms 2 and 4).
@@ -51,7 +56,7 @@ class PlannerRun {
 
  private:
   void logistic_loop();
-  long logistic_segment();
+  void begin_logistic_segment();
   // One step of the run's chaotic system on the scalar path (fixed step or
   // step doubling; the Arnold flow or a flow of system_list.hpp).
   void arnold_step();
@@ -98,6 +103,7 @@ class PlannerRun {
   LogisticOrbit logistic_;
   std::shared_ptr<const Zones> zones_;  // null until zones()
   bool ended_ = false;
+  bool rightwards_ = true;  // the Logistic planner's branch in this segment
   int seg_step_ = 0;
   long seg_before_ = 0, seg_c_u_ = 0;
 };
