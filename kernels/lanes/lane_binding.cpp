@@ -71,7 +71,7 @@ void LaneBinding::write_carried_step(LaneArrays& a, int l) const {
 // The Logistic planner's (LogisticMap::lane_step): its iterate, r, the
 // segment's branch, the fixed point and the robot's distance per point.
 void LaneBinding::write_logistic_step(LaneArrays& a, int l) const {
-  a.x[l] = logistic_x_;
+  a.x[l] = run_.planner_x_;
   a.y[l] = a.z[l] = 0.0;
   a.sx[l] = a.sy[l] = a.sz[l] = 0.0;
   a.cx[l] = a.cy[l] = a.cz[l] = 1.0;
@@ -200,7 +200,7 @@ bool LaneBinding::lane_step(LaneArrays& a, int l) {
   take_lane_progress(a, l);
   bool segment_or_end;
   if (logistic_) {
-    logistic_x_ = a.x[l];
+    run_.planner_x_ = a.x[l];
     segment_or_end = run_.logistic_step_done(a.y[l] == 0.0, a.dX[l], a.dY[l]);  // y: NaN when unusable
   } else {
     segment_or_end = run_.arnold_step_done(lane_state(a, l), lane_trig(a, l), a.dX[l], a.dY[l]);

@@ -21,7 +21,7 @@ class LaneBinding {
  public:
   // Expects what PlannerRun expects; a lane run has no trace.
   LaneBinding(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r)
-      : run_(p, env, grid, r, nullptr), logistic_(p.planner == Planner::logistic), logistic_x_(run_.logistic_state()) {}
+      : run_(p, env, grid, r, nullptr), logistic_(p.planner == Planner::logistic) {}
   PlannerRun& run() { return run_; }
 
   void write_lane(LaneArrays& a, int l);
@@ -55,11 +55,7 @@ class LaneBinding {
   void lane_box(LaneArrays& a, int l) const;
 
   PlannerRun run_;
-  // The Logistic planner: its map runs in the lanes (LogisticMap::lane_step),
-  // from x0 (the run's, jittered), its iterate kept here between the lanes'
-  // calls; the run's own LogisticOrbit (and its shared blocks) is unused.
-  bool logistic_;
-  double logistic_x_;
+  bool logistic_;  // the Logistic planner: its map runs in the lanes (LogisticMap::lane_step)
 };
 
 }  // namespace chaosweep

@@ -1,10 +1,11 @@
 #pragma once
 // The Logistic map x' = r x (1 - x) driving a robot heading (seed 000, Eqs. 2
 // and 4): theta = pi x - pi/2 moves the robot rightwards, pi x + pi/2
-// leftwards. Written once over the lane type T (math/lane_math.hpp), so the
-// scalar reference (the Logistic planner, MapZoning's transits) and the
-// lanes compute the same numbers; the heading's cosine and sine are
-// sincos.hpp's, not the C library's, for that reason (docs/decisions.md).
+// leftwards. Written once over the lane type T (math/lane_math.hpp). The
+// Logistic planner takes the heading's cosine and sine from sincos.hpp
+// (`heading`), so its scalar reference and its lanes compute the same
+// numbers; MapZoning's transits take the C library's of the same `angle`
+// (planners/arnold/logistic_orbit.hpp says why).
 #include <limits>
 #include <numbers>
 
@@ -32,12 +33,17 @@ struct LogisticMap {
   static auto usable(T x, T fixed) {
     return (x > lane::splat<T>(0.0)) & (x <= lane::splat<T>(1.0)) & (x != fixed);
   }
-  // The cosine and sine of theta = pi x + branch pi (|theta| <= 3 pi / 2:
-  // sincos's exact range, no wrap).
+  // theta = pi x + branch pi.
+  template <class T>
+  static T angle(T x, T branch) {
+    const T pi = lane::splat<T>(std::numbers::pi);
+    return pi * x + branch * pi;
+  }
+  // Its cosine and sine by sincos.hpp (|theta| <= 3 pi / 2: sincos's exact
+  // range, no wrap).
   template <class T>
   static void heading(T x, T branch, T& c, T& s) {
-    const T pi = lane::splat<T>(std::numbers::pi);
-    sincos(pi * x + branch * pi, s, c);
+    sincos(angle(x, branch), s, c);
   }
 
   // The Logistic planner's step in the lanes (kernels/lanes): state x in

@@ -35,7 +35,9 @@ LogisticOrbit::Heading LogisticOrbit::draw(double& x, bool rightwards) const {
   Heading h;
   x = h.x = LogisticMap::iterate(x, r_);
   h.ok = LogisticMap::usable(x, fixed_);
-  LogisticMap::heading(x, LogisticMap::branch(rightwards), h.cos, h.sin);
+  const double th = LogisticMap::angle(x, LogisticMap::branch(rightwards));
+  h.cos = std::cos(th);
+  h.sin = std::sin(th);
   return h;
 }
 
@@ -43,8 +45,12 @@ LogisticOrbit::Value LogisticOrbit::both(double& x) const {
   Value v;
   x = v.x = LogisticMap::iterate(x, r_);
   v.ok = LogisticMap::usable(x, fixed_);
-  LogisticMap::heading(x, LogisticMap::rightwards, v.cos_right, v.sin_right);
-  LogisticMap::heading(x, LogisticMap::leftwards, v.cos_left, v.sin_left);
+  const double right = LogisticMap::angle(x, LogisticMap::rightwards);
+  const double left = LogisticMap::angle(x, LogisticMap::leftwards);
+  v.cos_right = std::cos(right);
+  v.sin_right = std::sin(right);
+  v.cos_left = std::cos(left);
+  v.sin_left = std::sin(left);
   return v;
 }
 

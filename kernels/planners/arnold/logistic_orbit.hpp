@@ -1,11 +1,15 @@
 #pragma once
-// The Logistic map's orbit as a run draws it (seed 000, Eqs. 2 and 4): each
-// iterate, whether the orbit is still usable there, and the cosine and sine
-// of the robot's heading on either branch; the later iterates shared by the
-// runs of a sweep (core/shared_orbit.hpp). MapZoning's transit points draw
-// it from one x0 in every run (Table 1: no jitter), and their C-library
-// sincos was an eighth of the Table 1 search (issue 20; the trigonometry is
-// sincos.hpp's since, see systems/logistic_map.hpp).
+// The Logistic map's orbit as MapZoning's transits draw it (seed 000, Eqs. 2
+// and 4): each iterate, whether the orbit is still usable there, and the
+// cosine and sine of the robot's heading on either branch; the later
+// iterates shared by the runs of a sweep (core/shared_orbit.hpp). Transit
+// points draw it from one x0 in every run (Table 1: no jitter), and their
+// C-library sincos was an eighth of the Table 1 search (issue 20). The
+// trigonometry stays the C library's: sincos.hpp's (the Logistic planner's,
+// systems/logistic_map.hpp) differs in the last ulp, which moved transit
+// paths across cell corners and changed 8 of Table 1's 97,760 coverage
+// times, and its scalar form (a call per fma) was slower here than glibc's
+// (BENCHMARKS.md, "The Logistic planner in the lanes").
 #include "kernels/core/shared_orbit.hpp"
 
 namespace chaosweep {

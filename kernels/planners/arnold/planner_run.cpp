@@ -7,6 +7,7 @@
 #include "kernels/core/metrics.hpp"
 #include "kernels/math/splitmix.hpp"
 #include "kernels/planners/arnold/control.hpp"
+#include "kernels/systems/logistic_map.hpp"
 
 namespace chaosweep {
 
@@ -51,7 +52,8 @@ PlannerRun::PlannerRun(const RunParams& p, const Environment& env, CoverageGrid&
       last_visited_(0),
       th_(auto_th(p, env)),
       robot_(p, env, grid),
-      logistic_(initial_logistic(p)) {
+      logistic_(initial_logistic(p)),
+      planner_x_(logistic_.x()) {
   // Only map zoning uses the zones (their setup was 60% of a 200 m map's).
   if (p.map_zoning) zones();
   last_visited_ = grid_.visited_cells();
@@ -182,10 +184,15 @@ void PlannerRun::arnold_step() {
 
 // ----------------------------------------------------- Logistic map only
 
+// The planner's map is its own (planner_x_), not the transits' orbit: its
+// heading is sincos.hpp's, as in the lanes (LogisticMap::lane_step).
 void PlannerRun::logistic_loop() {
+  const double r = p_.logistic_r, fixed = LogisticMap::fixed_point(r), dtv = p_.dt_c * p_.v;
   while (!ended_) {
-    const LogisticOrbit::Heading h = logistic_.next(rightwards_);
-    logistic_step_done(h.ok, p_.dt_c * p_.v * h.cos, p_.dt_c * p_.v * h.sin);
+    planner_x_ = LogisticMap::iterate(planner_x_, r);
+    double c, s;
+    LogisticMap::heading(planner_x_, LogisticMap::branch(rightwards_), c, s);
+    logistic_step_done(LogisticMap::usable(planner_x_, fixed), dtv * c, dtv * s);
   }
 }
 

@@ -51,7 +51,7 @@ class PlannerRun {
   bool transit_to(Point goal);
   Point position() const { return {robot_.x(), robot_.y()}; }
   int th() const { return th_; }
-  double logistic_state() const { return logistic_.x(); }
+  double logistic_state() const { return logistic_.x(); }  // the transits' orbit's
   double time() const { return t_; }
 
  private:
@@ -100,7 +100,8 @@ class PlannerRun {
   long last_visited_;
   int th_;
   RobotMotion robot_;
-  LogisticOrbit logistic_;
+  LogisticOrbit logistic_;  // the transits' (MapZoning)
+  double planner_x_;        // the Logistic planner's iterate, from the same x0
   std::shared_ptr<const Zones> zones_;  // null until zones()
   bool ended_ = false;
   bool rightwards_ = true;  // the Logistic planner's branch in this segment
