@@ -100,8 +100,8 @@ class PlannerRun {
   long last_visited_;
   int th_;
   RobotMotion robot_;
-  LogisticOrbit logistic_;  // the transits' (MapZoning)
-  double planner_x_;        // the Logistic planner's iterate, from the same x0
+  LogisticOrbit logistic_;              // the transits' (MapZoning)
+  double planner_x_;                    // the Logistic planner's iterate, from the same x0
   std::shared_ptr<const Zones> zones_;  // null until zones()
   bool ended_ = false;
   bool rightwards_ = true;  // the Logistic planner's branch in this segment
