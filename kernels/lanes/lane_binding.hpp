@@ -14,9 +14,10 @@
 namespace chaosweep {
 
 // Step-driven use of a PlannerRun by the lane integrators, which compute
-// fixed-step RK4 steps (or Logistic points) of many runs at once: run().start(), write_lane(),
-// then for every step the integrator flags (see LaneArrays::flagged)
-// lane_step(), until it returns true (the run ended); then run().finish().
+// fixed-step RK4 steps (or Logistic points) of many runs at once:
+// run().start(), write_lane(), then for every step the integrator flags (see
+// LaneArrays::flagged) lane_step(), until it returns true (the run ended);
+// then run().finish().
 class LaneBinding {
  public:
   // Expects what PlannerRun expects; a lane run has no trace.

@@ -2,8 +2,9 @@
 // Runs a batch of runs through the lane integrators: each lane holds one run,
 // and when a run ends the next run of the batch takes its lane at once.
 // Runs the lanes cannot take (step doubling, planners other than the
-// seed-000 family's) run on the scalar reference path. Results land in the slot of their run, whatever the
-// lane, target or order: a pure function of each run's parameters.
+// seed-000 family's) run on the scalar reference path. Results land in the
+// slot of their run, whatever the lane, target or order: a pure function of
+// each run's parameters.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
