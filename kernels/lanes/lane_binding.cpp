@@ -87,7 +87,7 @@ void LaneBinding::write_logistic_step(LaneArrays& a, int l) const {
 }
 
 void LaneBinding::write_lane(LaneArrays& a, int l) {
-  if (logistic_) {
+  if (logistic()) {
     write_logistic_step(a, l);
   } else {
     with_system(run_.sys_, [&](auto tag) {
@@ -103,7 +103,7 @@ void LaneBinding::write_robot(LaneArrays& a, int l) {
   a.X[l] = run_.robot_.x();
   a.Y[l] = run_.robot_.y();
   a.t[l] = run_.t_;
-  a.fh[l] = logistic_ ? run_.p_.dt_c : run_.p_.f * run_.h_;  // the clock step after_move adds
+  a.fh[l] = logistic() ? run_.p_.dt_c : run_.p_.f * run_.h_;  // the clock step after_move adds
   a.budget[l] = run_.budget_;
   a.stuck_time[l] = run_.p_.stuck_time > 0 ? run_.p_.stuck_time : std::numeric_limits<double>::infinity();
   a.t_last_new[l] = run_.t_last_new_;
@@ -199,7 +199,7 @@ void LaneBinding::take_lane_progress(const LaneArrays& a, int l) {
 bool LaneBinding::lane_step(LaneArrays& a, int l) {
   take_lane_progress(a, l);
   bool segment_or_end;
-  if (logistic_) {
+  if (logistic()) {
     run_.planner_x_ = a.x[l];
     segment_or_end = run_.logistic_step_done(a.y[l] == 0.0, a.dX[l], a.dY[l]);  // y: NaN when unusable
   } else {
@@ -227,7 +227,7 @@ bool LaneBinding::lane_step(LaneArrays& a, int l) {
 
 bool LaneBinding::lane_covered(LaneArrays& a, int l) {
   take_lane_progress(a, l);
-  if (!logistic_) run_.u_ = lane_state(a, l);
+  if (!logistic()) run_.u_ = lane_state(a, l);
   run_.end(Status::ok);  // after_move's first check that holds (the integrator checked the position)
   return true;
 }

@@ -22,7 +22,7 @@ class LaneBinding {
  public:
   // Expects what PlannerRun expects; a lane run has no trace.
   LaneBinding(const RunParams& p, const Environment& env, CoverageGrid& grid, RunResult& r)
-      : run_(p, env, grid, r, nullptr), logistic_(p.planner == Planner::logistic) {}
+      : run_(p, env, grid, r, nullptr) {}
   PlannerRun& run() { return run_; }
 
   void write_lane(LaneArrays& a, int l);
@@ -55,8 +55,10 @@ class LaneBinding {
   // else obstacle_box around the robot.
   void lane_box(LaneArrays& a, int l) const;
 
+  // The Logistic planner: its map runs in the lanes (LogisticMap::lane_step).
+  bool logistic() const { return run_.p_.planner == Planner::logistic; }
+
   PlannerRun run_;
-  bool logistic_;  // the Logistic planner: its map runs in the lanes (LogisticMap::lane_step)
 };
 
 }  // namespace chaosweep

@@ -46,18 +46,33 @@ struct LogisticMap {
     sincos(angle(x, branch), s, c);
   }
 
+  // One point of the Logistic planner: the next iterate from x, whether it
+  // is usable, and the robot's move h_pos = dt_c v along its heading. The
+  // scalar loop (PlannerRun::logistic_loop) and the lanes (lane_step) both
+  // take it.
+  template <class T>
+  struct Step {
+    T x;
+    decltype(T() > T()) ok;
+    T dX, dY;
+  };
+  template <class T>
+  static Step<T> step(T x, T r, T branch, T fixed, T h_pos) {
+    const T next = iterate(x, r);
+    T c, s;
+    heading(next, branch, c, s);
+    return {next, usable(next, fixed), h_pos * c, h_pos * s};
+  }
+
   // The Logistic planner's step in the lanes (kernels/lanes): state x in
   // u.x (u.y becomes NaN after an unusable iterate, which sends the step to
-  // the sink), k.a = r, k.b = the branch, k.c = fixed_point(r); the robot
-  // moves h_pos = dt_c v along the heading of the new iterate.
+  // the sink), k.a = r, k.b = the branch, k.c = fixed_point(r).
   template <class T>
   static SystemStep<T> lane_step(const Vec3<T>& u, const SystemCoeffs<T>& k, T h_pos) {
-    const T x = iterate(u.x, k.a);
-    T c, s;
-    heading(x, k.b, c, s);
+    const Step<T> p = step(u.x, k.a, k.b, k.c, h_pos);
     const T zero = lane::splat<T>(0.0);
     const T bad = lane::splat<T>(std::numeric_limits<double>::quiet_NaN());
-    return {{x, lane::select(usable(x, k.c), zero, bad), zero}, h_pos * c, h_pos * s};
+    return {{p.x, lane::select(p.ok, zero, bad), zero}, p.dX, p.dY};
   }
 };
 

@@ -185,14 +185,13 @@ void PlannerRun::arnold_step() {
 // ----------------------------------------------------- Logistic map only
 
 // The planner's map is its own (planner_x_), not the transits' orbit: its
-// heading is sincos.hpp's, as in the lanes (LogisticMap::lane_step).
+// point is LogisticMap::step, as in the lanes (LogisticMap::lane_step).
 void PlannerRun::logistic_loop() {
   const double r = p_.logistic_r, fixed = LogisticMap::fixed_point(r), dtv = p_.dt_c * p_.v;
   while (!ended_) {
-    planner_x_ = LogisticMap::iterate(planner_x_, r);
-    double c, s;
-    LogisticMap::heading(planner_x_, LogisticMap::branch(rightwards_), c, s);
-    logistic_step_done(LogisticMap::usable(planner_x_, fixed), dtv * c, dtv * s);
+    const LogisticMap::Step<double> q = LogisticMap::step(planner_x_, r, LogisticMap::branch(rightwards_), fixed, dtv);
+    planner_x_ = q.x;
+    logistic_step_done(q.ok, q.dX, q.dY);
   }
 }
 

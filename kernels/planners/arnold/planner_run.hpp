@@ -37,9 +37,8 @@ class PlannerRun {
   bool arnold_step_done(const Vec3<double>& u, const Trig3<double>& t, double dX, double dY);
   // The Logistic planner's step: its iterate usable (else the run ends
   // diverged), the robot's displacement. True when the run ended or a new
-  // segment began (its branch chosen: rightwards()).
+  // segment began (its branch chosen).
   bool logistic_step_done(bool ok, double dX, double dY);
-  bool rightwards() const { return rightwards_; }
 
   // Single mechanisms, public so tests can drive them on hand-made cases;
   // defined in map_zoning.cpp (Algorithms 2 and 4).
