@@ -53,7 +53,7 @@ struct LogisticMap {
   template <class T>
   struct Step {
     T x;
-    decltype(T() > T()) ok;
+    decltype(usable(T(), T())) ok;  // int for double (bool & bool), a mask for a vector
     T dX, dY;
   };
   template <class T>
