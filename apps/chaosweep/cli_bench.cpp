@@ -20,7 +20,11 @@ void add_bench_command(CLI::App& app, std::function<int()>& action) {
       "--variant-runs runs per cell (ds_index 1-3 x seeds, ic jittered 1e-6, dc 0.9, max_pr 50,\n"
       "at most --variant-time robot seconds each), and reports ns per simulated step = wall time\n"
       "(per-run setup included) / (Arnold steps, or Logistic points for logistic, + transit\n"
-      "points), each also as the ratio to original on the open map of the same size and SR.");
+      "points), each also as the ratio to original on the open map of the same size and SR.\n"
+      "Each cell is measured --variant-rounds times, the cells of one map size and SR back to back\n"
+      "in a rotated order per round: ns per step is the median round, the ratio the median of the\n"
+      "rounds' ratios (with their least and greatest), so a slow phase of a shared machine falls on\n"
+      "both cells of a ratio alike.");
   auto json = std::make_shared<bool>(false);
   auto seconds = std::make_shared<double>(1.0);
   cmd->add_flag("--json", *json, "print one JSON object");
@@ -37,6 +41,10 @@ void add_bench_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--variant-runs", vopt->runs, "runs per --variants cell")
       ->check(CLI::Range(1, 100000))
       ->default_val(vopt->runs);
+  cmd->add_option("--variant-rounds", vopt->rounds,
+                  "times each --variants cell is measured (a map size and SR's cells back to back, in turn)")
+      ->check(CLI::Range(1, 99))
+      ->default_val(vopt->rounds);
   cmd->add_option("--variant-time", vopt->max_time, "robot seconds per --variants run at most (max_time)")
       ->check(CLI::Range(1.0, 1e7))
       ->default_val(vopt->max_time);

@@ -89,47 +89,84 @@ VariantsReport run_variants_bench(const VariantOptions& o) {
     std::vector<RunResult> results(tuples.size());
     lanes.evaluate(tuples, results);
   }
+  // The cells in report order (map, then variant), their runs resolved once.
+  std::vector<std::vector<RunTuple>> runs;
   for (const MapCase& m : maps)
     for (const Variant& v : variants) {
-      const std::vector<RunTuple> tuples = cell_runs(m, v, o);
-      std::vector<RunResult> results(tuples.size());
-      const auto t0 = clock_type::now();
-      lanes.evaluate(tuples, results);
+      runs.push_back(cell_runs(m, v, o));
       VariantCell c;
-      c.seconds = std::chrono::duration<double>(clock_type::now() - t0).count();
       c.size = m.size, c.sr = m.sr, c.env = m.env, c.variant = v.name, c.runs = o.runs;
-      for (const RunResult& x : results) {
-        c.arnold_steps += double(x.steps);
-        c.transit_points += double(x.transit_points);
-      }
-      c.ns_per_step = 1e9 * c.seconds / (c.arnold_steps + c.transit_points);
       r.cells.push_back(c);
     }
+  // Each cell's base: original on the open map of the same size and SR.
+  std::vector<std::size_t> base(r.cells.size());
+  for (std::size_t i = 0; i < r.cells.size(); ++i)
+    for (std::size_t b = 0; b < r.cells.size(); ++b)
+      if (r.cells[b].size == r.cells[i].size && r.cells[b].sr == r.cells[i].sr && r.cells[b].env == "open" &&
+          r.cells[b].variant == "original")
+        base[i] = b;
+  // A block: the cells sharing a base (both maps of one size and SR).
+  std::vector<std::vector<std::size_t>> blocks;
+  for (std::size_t i = 0; i < r.cells.size(); ++i) {
+    auto it = std::find_if(blocks.begin(), blocks.end(), [&](const auto& bl) { return base[bl.front()] == base[i]; });
+    if (it == blocks.end()) blocks.push_back({i});
+    else it->push_back(i);
+  }
+  std::vector<std::vector<double>> ratios(r.cells.size());
+  for (int round = 0; round < o.rounds; ++round)
+    for (const std::vector<std::size_t>& bl : blocks) {
+      for (std::size_t k = 0; k < bl.size(); ++k) {
+        const std::size_t i = bl[(k + std::size_t(round)) % bl.size()];
+        std::vector<RunResult> results(runs[i].size());
+        const auto t0 = clock_type::now();
+        lanes.evaluate(runs[i], results);
+        VariantCell& c = r.cells[i];
+        c.round_seconds.push_back(std::chrono::duration<double>(clock_type::now() - t0).count());
+        if (round == 0)
+          for (const RunResult& x : results) {  // the same every round: a run is a pure function of its parameters
+            c.arnold_steps += double(x.steps);
+            c.transit_points += double(x.transit_points);
+          }
+      }
+      for (std::size_t i : bl)
+        ratios[i].push_back(r.cells[i].round_seconds.back() / r.cells[base[i]].round_seconds.back() *
+                            (r.cells[base[i]].arnold_steps + r.cells[base[i]].transit_points) /
+                            (r.cells[i].arnold_steps + r.cells[i].transit_points));
+    }
   r.seconds = std::chrono::duration<double>(clock_type::now() - t_all).count();
-  // Ratios to original on the open map of the same size and SR.
-  for (VariantCell& c : r.cells)
-    for (const VariantCell& base : r.cells)
-      if (base.size == c.size && base.sr == c.sr && base.env == "open" && base.variant == "original")
-        c.ratio = c.ns_per_step / base.ns_per_step;
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  for (std::size_t i = 0; i < r.cells.size(); ++i) {
+    VariantCell& c = r.cells[i];
+    c.seconds = median(c.round_seconds);
+    c.ns_per_step = 1e9 * c.seconds / (c.arnold_steps + c.transit_points);
+    c.ratio = median(ratios[i]);
+    c.ratio_min = *std::min_element(ratios[i].begin(), ratios[i].end());
+    c.ratio_max = *std::max_element(ratios[i].begin(), ratios[i].end());
+  }
   return r;
 }
 
 std::string variants_json(const VariantsReport& r) {
   char buf[640];
   std::snprintf(buf, sizeof buf,
-                "{\n  \"runs_per_cell\": %d,\n  \"max_time\": %.17g,\n  \"threads\": 1,\n  \"target\": \"%s\",\n"
+                "{\n  \"runs_per_cell\": %d,\n  \"rounds\": %d,\n  \"max_time\": %.17g,\n  \"threads\": 1,\n  "
+                "\"target\": \"%s\",\n"
                 "  \"step\": \"Arnold steps (Logistic points for logistic) + transit points\",\n"
                 "  \"seconds\": %.3f,\n  \"cells\": [",
-                r.options.runs, r.options.max_time, r.target.c_str(), r.seconds);
+                r.options.runs, r.options.rounds, r.options.max_time, r.target.c_str(), r.seconds);
   std::string s = buf;
   for (std::size_t i = 0; i < r.cells.size(); ++i) {
     const VariantCell& c = r.cells[i];
     std::snprintf(buf, sizeof buf,
                   "%s\n    {\"size\": %g, \"sr\": %g, \"env\": \"%s\", \"variant\": \"%s\", \"runs\": %d, "
                   "\"arnold_steps\": %.0f, \"transit_points\": %.0f, \"seconds\": %.6f, \"ns_per_step\": %.4f, "
-                  "\"ratio\": %.4f}",
+                  "\"ratio\": %.4f, \"ratio_min\": %.4f, \"ratio_max\": %.4f}",
                   i ? "," : "", c.size, c.sr, c.env.c_str(), c.variant.c_str(), c.runs, c.arnold_steps,
-                  c.transit_points, c.seconds, c.ns_per_step, c.ratio);
+                  c.transit_points, c.seconds, c.ns_per_step, c.ratio, c.ratio_min, c.ratio_max);
     s += buf;
   }
   return s + "\n  ]\n}";
@@ -140,8 +177,11 @@ std::string variants_text(const VariantsReport& r) {
   std::snprintf(buf, sizeof buf,
                 "technique variants, 1 thread (%s lanes), %d runs per cell, dc 0.9, max_pr 50, max_time %g s;\n"
                 "ns per simulated step = wall time (setup included) / (Arnold steps, or Logistic points, + transit "
-                "points);\n(x) = ratio to original on the open map of the same size and SR; measured in %.1f s\n\n",
-                r.target.c_str(), r.options.runs, r.options.max_time, r.seconds);
+                "points),\nthe median of %d rounds (a map size and SR's cells back to back, in turn);\n"
+                "(x) = ratio to original on the open map of the same size and SR, the median of the rounds' ratios%s;\n"
+                "measured in %.1f s\n\n",
+                r.target.c_str(), r.options.runs, r.options.max_time, r.options.rounds,
+                r.options.rounds > 1 ? " (x, least-greatest)" : "", r.seconds);
   std::string s = buf;
   s += "| map | ";
   for (const std::string& n : bench_variant_names()) s += n + " | ";
@@ -156,7 +196,9 @@ std::string variants_text(const VariantsReport& r) {
     double transit = 0, steps = 0;
     for (std::size_t k = 0; k < nv; ++k) {
       const VariantCell& c = r.cells[row + k];
-      std::snprintf(buf, sizeof buf, "%.1f (%.2fx) | ", c.ns_per_step, c.ratio);
+      if (r.options.rounds > 1)
+        std::snprintf(buf, sizeof buf, "%.1f (%.2fx, %.2f-%.2f) | ", c.ns_per_step, c.ratio, c.ratio_min, c.ratio_max);
+      else std::snprintf(buf, sizeof buf, "%.1f (%.2fx) | ", c.ns_per_step, c.ratio);
       s += buf;
       transit += c.transit_points;
       steps += c.arnold_steps + c.transit_points;

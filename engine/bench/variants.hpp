@@ -10,6 +10,11 @@ namespace chaosweep {
 struct VariantOptions {
   int runs = 384;           // runs per cell, the same parameters in every cell
   double max_time = 20000;  // robot seconds per run at most (and max_pr = 50 as Table 1)
+  // Every cell measured this many times: in each round the cells of one map
+  // size and SR (both maps, every variant) run back to back, their order
+  // rotated from round to round, so that a slow phase of a shared machine
+  // falls on a ratio's two cells alike.
+  int rounds = 3;
 };
 
 struct VariantCell {
@@ -17,11 +22,15 @@ struct VariantCell {
   std::string env;      // "open" or "five_squares"
   std::string variant;  // original, IS, SC, MZ, IS+MZ+SC, logistic
   int runs = 0;
-  double arnold_steps = 0;    // RunResult::steps summed (Logistic points for the logistic planner)
-  double transit_points = 0;  // RunResult::transit_points summed (MapZoning transits)
-  double seconds = 0;         // wall time of the cell's runs on one thread, setup included
-  double ns_per_step = 0;     // 1e9 seconds / (arnold_steps + transit_points)
-  double ratio = 0;           // ns_per_step / that of original on the open map, same size and SR
+  double arnold_steps = 0;            // RunResult::steps summed (Logistic points for the logistic planner)
+  double transit_points = 0;          // RunResult::transit_points summed (MapZoning transits)
+  std::vector<double> round_seconds;  // wall time of the cell's runs in each round, one thread, setup included
+  double seconds = 0;                 // their median
+  double ns_per_step = 0;             // 1e9 seconds / (arnold_steps + transit_points)
+  // ns_per_step / that of original on the open map of the same size and SR,
+  // taken in each round: the median of the rounds' ratios, their least and
+  // greatest.
+  double ratio = 0, ratio_min = 0, ratio_max = 0;
 };
 
 struct VariantsReport {

@@ -699,50 +699,76 @@ TEST(CliBench, JsonReportsEachWidthTheNaiveRatioAndTheWholeSweep) {
 }
 
 // --variants: every cell (6 technique sets x 50/200 m x SR 1/4 x open/five
-// squares) once, with finite positive ns per step and ratios that are the
-// quotient of the reported ns values. Tiny runs keep it fast; speed itself
-// is for BENCHMARKS.md.
+// squares) once per round, with finite positive ns per step and ratios that
+// are the quotient of the reported ns values (one round), or the median of
+// the rounds' ratios, between their least and greatest (two rounds: the
+// mean of the two). Tiny runs keep it fast; speed itself is for BENCHMARKS.md.
 TEST(CliBench, VariantsReportEveryCellWithConsistentRatios) {
-  const auto r = chaosweep::test::run_chaosweep("bench --variants --json --variant-runs 3 --variant-time 20");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::regex cell(
-      "\\{\"size\": ([0-9]+), \"sr\": ([0-9]+), \"env\": \"([a-z_]+)\", \"variant\": \"([A-Za-z+]+)\", \"runs\": 3, "
-      "\"arnold_steps\": ([0-9]+), \"transit_points\": ([0-9]+), \"seconds\": ([-0-9.e+]+), "
-      "\"ns_per_step\": ([-0-9.e+naif]+), \"ratio\": ([-0-9.e+naif]+)\\}");
-  std::map<std::string, std::pair<double, double>> cells;  // key -> (ns, ratio)
-  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), cell); it != std::sregex_iterator(); ++it) {
-    const std::smatch& m = *it;
-    const std::string key = m[1].str() + "/" + m[2].str() + "/" + m[3].str() + "/" + m[4].str();
-    EXPECT_GT(std::stod(m[5]) + std::stod(m[6]), 0.0) << key;
-    EXPECT_TRUE(cells.emplace(key, std::pair{std::stod(m[8]), std::stod(m[9])}).second) << "twice: " << key;
-  }
-  ASSERT_EQ(cells.size(), 48u) << r.out;
-  for (const char* size : {"50", "200"})
-    for (const char* sr : {"1", "4"}) {
-      const std::string map = std::string(size) + "/" + sr + "/";
-      const auto base = cells.find(map + "open/original");
-      ASSERT_NE(base, cells.end()) << map;
-      for (const char* env : {"open", "five_squares"})
-        for (const char* v : {"original", "IS", "SC", "MZ", "IS+MZ+SC", "logistic"}) {
-          const auto c = cells.find(map + env + "/" + v);
-          ASSERT_NE(c, cells.end()) << map << env << "/" << v;
-          const auto [ns, ratio] = c->second;
-          EXPECT_TRUE(std::isfinite(ns) && ns > 0) << c->first;
-          EXPECT_TRUE(std::isfinite(ratio) && ratio > 0) << c->first;
-          EXPECT_NEAR(ratio, ns / base->second.first, 1e-3 * ratio + 1e-4) << c->first;
-        }
-      EXPECT_NEAR(base->second.second, 1.0, 1e-9);
+  for (const int rounds : {1, 2}) {
+    const auto r = chaosweep::test::run_chaosweep(
+        "bench --variants --json --variant-runs 3 --variant-time 20 "
+        "--variant-rounds " +
+        std::to_string(rounds));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string num = "([-0-9.e+naif]+)";
+    const std::regex cell(
+        "\\{\"size\": ([0-9]+), \"sr\": ([0-9]+), \"env\": \"([a-z_]+)\", \"variant\": \"([A-Za-z+]+)\", "
+        "\"runs\": 3, \"arnold_steps\": ([0-9]+), \"transit_points\": ([0-9]+), \"seconds\": " +
+        num + ", \"ns_per_step\": " + num + ", \"ratio\": " + num + ", \"ratio_min\": " + num +
+        ", \"ratio_max\": " + num + "\\}");
+    struct Cell {
+      double ns, ratio, lo, hi;
+    };
+    std::map<std::string, Cell> cells;
+    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), cell); it != std::sregex_iterator(); ++it) {
+      const std::smatch& m = *it;
+      const std::string key = m[1].str() + "/" + m[2].str() + "/" + m[3].str() + "/" + m[4].str();
+      EXPECT_GT(std::stod(m[5]) + std::stod(m[6]), 0.0) << key;
+      const Cell c{std::stod(m[8]), std::stod(m[9]), std::stod(m[10]), std::stod(m[11])};
+      EXPECT_TRUE(cells.emplace(key, c).second) << "twice: " << key;
     }
-  EXPECT_NE(r.out.find("\"runs_per_cell\": 3"), std::string::npos);
-  EXPECT_NE(r.out.find("\"threads\": 1"), std::string::npos);
+    ASSERT_EQ(cells.size(), 48u) << r.out;
+    for (const char* size : {"50", "200"})
+      for (const char* sr : {"1", "4"}) {
+        const std::string map = std::string(size) + "/" + sr + "/";
+        const auto base = cells.find(map + "open/original");
+        ASSERT_NE(base, cells.end()) << map;
+        for (const char* env : {"open", "five_squares"})
+          for (const char* v : {"original", "IS", "SC", "MZ", "IS+MZ+SC", "logistic"}) {
+            const auto c = cells.find(map + env + "/" + v);
+            ASSERT_NE(c, cells.end()) << map << env << "/" << v;
+            const Cell& x = c->second;
+            EXPECT_TRUE(std::isfinite(x.ns) && x.ns > 0) << c->first;
+            EXPECT_TRUE(std::isfinite(x.ratio) && x.ratio > 0) << c->first;
+            EXPECT_LE(x.lo, x.ratio * (1 + 1e-3)) << c->first;
+            EXPECT_GE(x.hi, x.ratio * (1 - 1e-3)) << c->first;
+            if (rounds == 1) {
+              EXPECT_NEAR(x.ratio, x.ns / base->second.ns, 1e-3 * x.ratio + 1e-4) << c->first;
+              EXPECT_NEAR(x.lo, x.hi, 1e-3 * x.ratio + 1e-4) << c->first;
+            } else {
+              EXPECT_NEAR(x.ratio, 0.5 * (x.lo + x.hi), 1e-3 * x.ratio + 1e-4) << c->first;
+            }
+          }
+        EXPECT_NEAR(base->second.ratio, 1.0, 1e-9);
+        EXPECT_NEAR(base->second.lo, 1.0, 1e-9);
+        EXPECT_NEAR(base->second.hi, 1.0, 1e-9);
+      }
+    EXPECT_NE(r.out.find("\"runs_per_cell\": 3"), std::string::npos);
+    EXPECT_NE(r.out.find("\"rounds\": " + std::to_string(rounds)), std::string::npos);
+    EXPECT_NE(r.out.find("\"threads\": 1"), std::string::npos);
+  }
   // The default table names every variant in its header.
   const auto t = chaosweep::test::run_chaosweep("bench --variants --variant-runs 1 --variant-time 5");
   ASSERT_EQ(t.exit_code, 0) << t.err;
   EXPECT_NE(t.out.find("| map | original | IS | SC | MZ | IS+MZ+SC | logistic |"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("| 200 m SR 4 five_squares | "), std::string::npos) << t.out;
-  const auto bad = chaosweep::test::run_chaosweep("bench --variants --variant-runs 0");
-  EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.err.find("--variant-runs"), std::string::npos) << bad.err;
+  EXPECT_NE(t.out.find("the median of 3 rounds"), std::string::npos) << t.out;
+  for (const char* bad_flag : {"--variant-runs 0", "--variant-rounds 0", "--variant-rounds 100"}) {
+    const auto bad = chaosweep::test::run_chaosweep(std::string("bench --variants ") + bad_flag);
+    EXPECT_EQ(bad.exit_code, 2) << bad_flag;
+    EXPECT_NE(bad.err.find(std::string(bad_flag).substr(0, std::string(bad_flag).find(' '))), std::string::npos)
+        << bad.err;
+  }
 }
 
 TEST(CliBench, PipelineMeasuresOneTargetAndRefusesAnUnknownOne) {
