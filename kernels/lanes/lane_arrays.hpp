@@ -80,6 +80,10 @@ struct LaneArrays {
   alignas(64) double near_x0[max_lanes], near_x1[max_lanes], near_y0[max_lanes], near_y1[max_lanes];
   alignas(64) double near_mirror[max_lanes];
   bool obstacles[max_lanes];
+  // in: bit l set while lane l has a run. An idle lane (the queue's tail)
+  // steps along unread and is never flagged: flagged at every pass, it sent
+  // every lane to the sink after each step (BENCHMARKS.md).
+  unsigned active = 0;
   unsigned flagged = 0;  // out: bit l set when the sink must handle lane l's step
   unsigned covered = 0;  // out: bit l set when lane l's applied step reached dc (the sink ends the run)
 };

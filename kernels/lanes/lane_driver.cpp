@@ -101,8 +101,10 @@ class LaneDriver final : public LaneSink {
     clock_type::time_point t0;
   };
 
-  // Idle lane: harmless numbers (a frozen, flagged lane), never read back.
+  // Idle lane: harmless numbers (a frozen lane: never applied, never
+  // flagged), never read back.
   void idle_lane(int l) {
+    a_.active &= ~(1u << l);
     a_.x[l] = a_.y[l] = a_.z[l] = a_.kA[l] = a_.kB[l] = a_.kC[l] = a_.kD[l] = a_.pos6[l] = 0.0;
     a_.ds[l] = 3.0;
     a_.h[l] = a_.h_pos[l] = 0.0;
@@ -208,6 +210,7 @@ class LaneDriver final : public LaneSink {
           continue;
         }
         s.run->write_lane(a_, l);
+        a_.active |= 1u << l;
         return;
       } catch (const std::exception& e) {
         record_error(r, e.what());

@@ -282,7 +282,7 @@ struct StepsDone {
 template <class V, int N, bool Staged, bool General, class F>
 inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
-  constexpr unsigned all_lanes = (1u << (w * N)) - 1u;
+  const unsigned live = a.active & ((1u << (w * N)) - 1u);
   constexpr bool carried = CarriedSystem<F>;
   StepInput<V> in[N];
   SystemInput<V> fin[N];
@@ -330,7 +330,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
         fin[k].u = s[k].u;
       }
     }
-    d.flagged = ~d.applied & all_lanes;
+    d.flagged = ~d.applied & live;
     d.covered = mark_entered<V>(a, entered);
     if ((d.flagged | d.covered) != 0)
       for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
@@ -352,6 +352,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
 template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
+    if (a.active == 0) return;  // (no lane would ever stop the steps)
     bool general = false;
     for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.obstacles[l];
     StepsDone d;

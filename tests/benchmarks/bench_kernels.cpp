@@ -206,6 +206,7 @@ void BM_lane_kernel(benchmark::State& state) {
   const int lanes = int(state.range(0));
   LaneArrays a;
   a.lanes = lanes;
+  a.active = (1u << lanes) - 1;
   for (int l = 0; l < lanes; ++l) {
     a.x[l] = 0.01 * l;
     a.y[l] = 1.0;
