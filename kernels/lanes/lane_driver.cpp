@@ -75,7 +75,7 @@ class LaneDriver final : public LaneSink {
 
   // Visits only the lanes whose step reached dc (to end the run) and the
   // lanes the integrator flagged (to redo their step in full); it applied
-  // every other lane's step itself. Idle lanes stay flagged and are skipped.
+  // every other lane's step itself. Idle lanes are never flagged (LaneArrays::active).
   bool post_step() override {
     bool refilled = false;
     // Steps the integrator applied that reached dc, then the flagged steps;
