@@ -51,7 +51,6 @@ class LaneDriver final : public LaneSink {
       : q_(queue), items_(queue.items), results_(queue.results), slots_(std::size_t(lanes)) {
     a_.lanes = lanes;
     for (int l = 0; l < lanes; ++l) load(l);
-    active_ = any_active();
   }
   ~LaneDriver() { flush_counts(); }
   LaneDriver(const LaneDriver&) = delete;
@@ -68,8 +67,7 @@ class LaneDriver final : public LaneSink {
       system_ = k;
       a_.system = k;
       for (int l = 0; l < a_.lanes; ++l) load(l);
-      active_ = any_active();
-      if (active_) return true;
+      if (any_active()) return true;
     }
   }
 
@@ -77,21 +75,16 @@ class LaneDriver final : public LaneSink {
   // lanes the integrator flagged (to redo their step in full); it applied
   // every other lane's step itself. Idle lanes are never flagged (LaneArrays::active).
   bool post_step() override {
-    bool refilled = false;
     // Steps the integrator applied that reached dc, then the flagged steps;
     // the two sets are disjoint.
-    for (unsigned m = a_.covered; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), true);
-    for (unsigned m = a_.flagged; m != 0; m &= m - 1) refilled |= handle(std::countr_zero(m), false);
-    if (refilled) active_ = any_active();
-    return active_;
+    for (unsigned m = a_.covered; m != 0; m &= m - 1) handle(std::countr_zero(m), true);
+    for (unsigned m = a_.flagged; m != 0; m &= m - 1) handle(std::countr_zero(m), false);
+    return any_active();
   }
 
   LaneArrays& arrays() { return a_; }
-  bool any_active() const {
-    for (const Slot& s : slots_)
-      if (s.run) return true;
-    return false;
-  }
+  // A lane has a run exactly when its bit is set (load, idle_lane).
+  bool any_active() const { return a_.active != 0; }
 
  private:
   struct Slot {
@@ -135,12 +128,12 @@ class LaneDriver final : public LaneSink {
   }
 
   // Lane l's step for the sink (LaneBinding::lane_covered or lane_step); when
-  // its run ends, the lane takes the next one. Returns true when it did.
-  bool handle(int l, bool covered) {
+  // its run ends, the lane takes the next one.
+  void handle(int l, bool covered) {
     Slot& s = slots_[std::size_t(l)];
-    if (!s.run) return false;
+    if (!s.run) return;
     try {
-      if (!(covered ? s.run->lane_covered(a_, l) : s.run->lane_step(a_, l))) return false;
+      if (!(covered ? s.run->lane_covered(a_, l) : s.run->lane_step(a_, l))) return;
       complete(s);
     } catch (const std::exception& e) {
       record_error(results_[s.item], e.what());
@@ -148,7 +141,6 @@ class LaneDriver final : public LaneSink {
       count(results_[s.item]);
     }
     load(l);
-    return true;
   }
 
   void complete(Slot& s) {
@@ -258,7 +250,6 @@ class LaneDriver final : public LaneSink {
   RunResult* results_;
   std::vector<Slot> slots_;
   LaneArrays a_;
-  bool active_ = false;                        // some lane has a run
   int system_ = -1;                            // the lanes' system (-1: no lane run yet)
   std::size_t held_ = 0;                       // runs in pending_
   std::size_t claimed_ = 0, claimed_end_ = 0;  // runs claimed from the queue, not yet taken
