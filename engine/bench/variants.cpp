@@ -112,6 +112,9 @@ VariantsReport run_variants_bench(const VariantOptions& o) {
     if (it == blocks.end()) blocks.push_back({i});
     else it->push_back(i);
   }
+  const auto ns_per_step = [](const VariantCell& c, double seconds) {
+    return 1e9 * seconds / (c.arnold_steps + c.transit_points);
+  };
   std::vector<std::vector<double>> ratios(r.cells.size());
   for (int round = 0; round < o.rounds; ++round)
     for (const std::vector<std::size_t>& bl : blocks) {
@@ -128,10 +131,10 @@ VariantsReport run_variants_bench(const VariantOptions& o) {
             c.transit_points += double(x.transit_points);
           }
       }
-      for (std::size_t i : bl)
-        ratios[i].push_back(r.cells[i].round_seconds.back() / r.cells[base[i]].round_seconds.back() *
-                            (r.cells[base[i]].arnold_steps + r.cells[base[i]].transit_points) /
-                            (r.cells[i].arnold_steps + r.cells[i].transit_points));
+      for (std::size_t i : bl) {
+        const VariantCell &c = r.cells[i], &b = r.cells[base[i]];
+        ratios[i].push_back(ns_per_step(c, c.round_seconds.back()) / ns_per_step(b, b.round_seconds.back()));
+      }
     }
   r.seconds = std::chrono::duration<double>(clock_type::now() - t_all).count();
   const auto median = [](std::vector<double> v) {
@@ -142,7 +145,7 @@ VariantsReport run_variants_bench(const VariantOptions& o) {
   for (std::size_t i = 0; i < r.cells.size(); ++i) {
     VariantCell& c = r.cells[i];
     c.seconds = median(c.round_seconds);
-    c.ns_per_step = 1e9 * c.seconds / (c.arnold_steps + c.transit_points);
+    c.ns_per_step = ns_per_step(c, c.seconds);
     c.ratio = median(ratios[i]);
     c.ratio_min = *std::min_element(ratios[i].begin(), ratios[i].end());
     c.ratio_max = *std::max_element(ratios[i].begin(), ratios[i].end());
