@@ -1,5 +1,6 @@
 #include "kernels/core/param_table.hpp"
 #include "kernels/core/trace.hpp"
+#include "kernels/systems/system_list.hpp"
 
 #include <charconv>
 #include <cmath>

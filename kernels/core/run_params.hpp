@@ -2,7 +2,7 @@
 // What a run is (its parameters) and what it yields (its result). A run is a
 // pure function RunParams x Environment -> RunResult (docs/spec.md §6).
 #include "kernels/systems/cheb_transform.hpp"
-#include "kernels/systems/system_list.hpp"
+#include "kernels/systems/system_info.hpp"
 
 #include <cstdint>
 #include <limits>

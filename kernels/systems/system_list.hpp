@@ -6,8 +6,6 @@
 // the spec by the system's name). Adding a system is adding its header and
 // its name here: the parameter table, the scalar planner and every lane
 // width take it from this list (docs/add_a_system.md).
-#include <string_view>
-
 #include "kernels/systems/chaotic_map.hpp"
 #include "kernels/systems/flow.hpp"
 #include "kernels/systems/flows/arnold.hpp"
@@ -15,6 +13,7 @@
 #include "kernels/systems/flows/chua.hpp"
 #include "kernels/systems/flows/lorenz.hpp"
 #include "kernels/systems/maps/chirikov.hpp"
+#include "kernels/systems/system_info.hpp"
 
 namespace chaosweep {
 
@@ -25,7 +24,6 @@ struct SystemList {
 
 using ListedSystems = SystemList<Arnold, Lorenz, Chen, Chua, Chirikov>;
 
-inline constexpr int arnold_system = 0;  // Arnold's place in the list (its coefficients are A, B, C)
 inline constexpr int system_count = ListedSystems::size;
 
 template <class F>
@@ -56,19 +54,6 @@ inline void with_system(int s, Fn&& fn) {
 template <class Fn>
 inline void for_each_system(Fn&& fn) {
   system_detail::each(fn, ListedSystems{});
-}
-
-inline std::string_view system_name(int s) {
-  std::string_view n = "?";
-  with_system(s, [&](auto tag) { n = decltype(tag)::type::name; });
-  return n;
-}
-
-// A system's defaults (the Arnold flow: no sys_* coefficients, its ic).
-inline SystemDefaults system_defaults(int s) {
-  SystemDefaults d{0, 0, 0, 0, 0, {"", "", "", ""}, {0, 0, 0}};
-  with_system(s, [&](auto tag) { d = decltype(tag)::type::defaults; });
-  return d;
 }
 
 // One step of listed system F: an RK4 step of h for a flow, one iteration
