@@ -6,8 +6,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 fmt=$(command -v clang-format-14 || command -v clang-format || true)
 [[ -n $fmt ]] || { echo "check_format: clang-format not found (apt-get install clang-format)" >&2; exit 1; }
-bad=0
-while IFS= read -r f; do
-  if ! "$fmt" --dry-run -Werror "$f" >/dev/null 2>&1; then echo "not formatted: $f"; bad=1; fi
-done < <(git ls-files '*.cpp' '*.hpp')
-exit $bad
+# One clang-format for all files (one per file spent a second in every 10 on
+# its start); its diagnostics name each file that differs.
+if out=$(git ls-files -z '*.cpp' '*.hpp' | xargs -0 "$fmt" --dry-run -Werror 2>&1); then exit 0; fi
+bad=$(sed -nE 's/^(.+):[0-9]+:[0-9]+: error: code should be clang-formatted.*/\1/p' <<<"$out" | sort -u)
+if [[ -n $bad ]]; then
+  sed 's/^/not formatted: /' <<<"$bad"
+else
+  echo "check_format: $fmt failed:" >&2
+  printf '%s\n' "$out" | tail -n 20 >&2
+fi
+exit 1
