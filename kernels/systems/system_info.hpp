@@ -14,8 +14,8 @@ inline constexpr int arnold_system = 0;  // Arnold's place in the list (its coef
 // The name of the system of index s ("?" for an index out of range).
 std::string_view system_name(int s);
 
-// A system's defaults (the Arnold flow, and an index out of range: no sys_*
-// coefficients; the Arnold flow's ic).
+// A system's defaults (the Arnold flow: no sys_* coefficients, its ic; an
+// index out of range: all zero).
 SystemDefaults system_defaults(int s);
 
 }  // namespace chaosweep
