@@ -44,6 +44,16 @@ class CoverageGrid {
     c = c == unvisited ? std::uint8_t(visited) : c;
   }
 
+  // Whether mark_cell(i, j) would change nothing: the cell marked last,
+  // visited (or blocked), and touched in this window already (a transit's
+  // points stay about ten to a cell).
+  bool marks_nothing(int i, int j) const {
+    const long k = long(j) * nx_ + i;
+    if (k != current_) return false;
+    const std::uint8_t c = cells_[std::size_t(k)];
+    return c != unvisited && (stamp_.empty() || c == blocked || stamp_[std::size_t(k)] == window_);
+  }
+
   // Visited cells per region, kept up to date as cells are marked, so that
   // MapZoning's zone densities cost O(zones) instead of a pass over the grid
   // at every zoning attempt. region_of_cell: the region (0 .. regions - 1) of

@@ -51,6 +51,18 @@ class RobotMotion {
     mark(px, py);
   }
 
+  // jump_to for a point (x, y) in cell (i, j), the robot being in cell
+  // (ri, rj), when that marks nothing (the cell marked last, nothing new to
+  // count: CoverageGrid::marks_nothing); true when it moved the robot, false
+  // (nothing done) otherwise. A transit's points fall about ten to a cell.
+  bool jump_within(double x, double y, int i, int j, int ri, int rj) {
+    if (sampling_ == Sampling::segments && (ri != i || rj != j)) return false;
+    if (!grid_.marks_nothing(i, j)) return false;
+    x_ = ux_ = x;
+    y_ = uy_ = y;
+    return true;
+  }
+
   // Always inlined: it runs once per step of every lane.
   [[gnu::always_inline]] void move(double dx, double dy) {
     const double px = x_, py = y_;

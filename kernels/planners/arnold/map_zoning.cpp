@@ -41,25 +41,33 @@ void PlannerRun::map_zoning() {
 
 bool PlannerRun::transit_to(Point goal) {
   int attempts = 0;
-  // P: the Logistic positions, path: P mapped by Eq. 6 (from the robot, or
+  // P: the Logistic positions (storage kept from transit to transit), mapped
+  // by Eq. 6 point by point as the robot reaches them (from the robot, or
   // from the last pushed-out point on).
-  std::vector<Point> P, path;
+  std::vector<Point>& P = transit_positions_;
+  Eq6Map eq6;
   auto fresh_path = [&](Point from) {
-    P = logistic_positions(from, goal, p_.v, p_.dt_c, logistic_);
-    if (P.empty()) return end(Status::diverged, "Logistic map reached a fixed point"), false;
-    map_positions(P, 0, from, goal, path);
+    if (!logistic_positions(from, goal, p_.v, p_.dt_c, logistic_, P))
+      return end(Status::diverged, "Logistic map reached a fixed point"), false;
+    eq6 = Eq6Map(P, 0, from, goal);
     return true;
   };
   if (!fresh_path(position())) return false;
-  for (std::size_t i = 1; i < path.size(); ++i) {
+  const bool open = env_.obstacles.empty();
+  int ri = grid_.cell_x(robot_.x()), rj = grid_.cell_y(robot_.y());  // the robot's cell
+  for (std::size_t i = 1; i < P.size(); ++i) {
+    const Point q = eq6.at(P, i);
     // Eq. 7 near the walls, as on Arnold segments.
-    double x = mirror_eq7(path[i].x, 0.0, env_.lx, p_.fo);
-    double y = mirror_eq7(path[i].y, 0.0, env_.ly, p_.fo);
-    const bool blocked = env_.obstacle_at(x, y) >= 0;
+    double x = mirror_eq7(q.x, 0.0, env_.lx, p_.fo);
+    double y = mirror_eq7(q.y, 0.0, env_.ly, p_.fo);
+    const bool blocked = !open && env_.obstacle_at(x, y) >= 0;
     // Eq. 8 as the Arnold steps read it (a transit point has no motion to reverse).
     if (blocked) keep_out_of_obstacles(env_, p_.fo, p_.obstacle_response != ObstacleResponse::push, x, y);
     const Point from = position();
-    robot_.jump_to(x, y);
+    const int ci = grid_.cell_x(x), cj = grid_.cell_y(y);
+    if (!robot_.jump_within(x, y, ci, cj, ri, rj)) robot_.jump_to(x, y);
+    ri = ci;
+    rj = cj;
     ++r_.transit_points;
     // The mapped points are not v dt_c apart (Eq. 6 adds the correction Q):
     // dt_c each is Algorithm 4's clock, distance / v the robot's speed.
@@ -71,8 +79,8 @@ bool PlannerRun::transit_to(Point goal) {
     // Rebuild the rest of the path from the pushed-out point: Algorithm 4
     // maps the remaining Logistic points P_i..P_m anew (m <- m - i + 1); a
     // fresh path draws new ones. A blocked goal leaves nothing to reuse.
-    if (p_.transit_replan == TransitReplan::reuse && i + 1 < path.size()) {
-      map_positions(P, i, {x, y}, goal, path);
+    if (p_.transit_replan == TransitReplan::reuse && i + 1 < P.size()) {
+      eq6 = Eq6Map(P, i, {x, y}, goal);
     } else {
       if (!fresh_path({x, y})) return false;
       i = 0;

@@ -99,9 +99,10 @@ class PlannerRun {
   long last_visited_;
   int th_;
   RobotMotion robot_;
-  LogisticOrbit logistic_;              // the transits' (MapZoning)
-  double planner_x_;                    // the Logistic planner's iterate, from the same x0
-  std::shared_ptr<const Zones> zones_;  // null until zones()
+  LogisticOrbit logistic_;                // the transits' (MapZoning)
+  double planner_x_;                      // the Logistic planner's iterate, from the same x0
+  std::shared_ptr<const Zones> zones_;    // null until zones()
+  std::vector<Point> transit_positions_;  // transit_to's, kept for their storage
   bool ended_ = false;
   bool rightwards_ = true;  // the Logistic planner's branch in this segment
   int seg_step_ = 0;
