@@ -12,32 +12,30 @@ src=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(mktemp -d /tmp/chaosweep-same.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 fail=0
+# both NAME WHAT COMMAND...: runs COMMAND -o FILE with each binary, then compares the files.
+both() {
+  local name=$1 what=$2 b line
+  shift 2
+  for b in old new; do
+    "${!b}" "$@" -o "$work/$name.$b.h5" --threads "$threads" -q --progress never >"$work/$name.$b.log" 2>&1 ||
+      { echo "$name: the $b binary failed"; cat "$work/$name.$b.log"; fail=1; }
+  done
+  if line=$("$new" compare "$work/$name.old.h5" "$work/$name.new.h5" 2>&1); then
+    echo "$name ($what): $(grep -o '[0-9]* identical' <<<"$line" | head -1)"
+  else
+    echo "$name ($what): DIFFERENT"; echo "$line" | head -20; fail=1
+  fi
+}
 for spec in "$src"/experiments/*.toml; do
   name=$(basename "$spec" .toml)
   if "$new" plan "$spec" | head -1 | grep -q '^tune '; then
     # A tune spec: the race of every case at a budget of 100 runs, 4 validation seeds.
-    for b in old new; do
-      "${!b}" tune "$spec" -o "$work/$name.$b.h5" --budget 100 --validation-seeds 4 --threads "$threads" -q \
-        --progress never >"$work/$name.$b.log" 2>&1 || { echo "$name: the $b binary failed"; cat "$work/$name.$b.log"; fail=1; }
-    done
-    if line=$("$new" compare "$work/$name.old.h5" "$work/$name.new.h5" 2>&1); then
-      echo "$name (tune, budget 100 per case): $(grep -o '[0-9]* identical' <<<"$line" | head -1)"
-    else
-      echo "$name (tune, budget 100 per case): DIFFERENT"; echo "$line" | head -20; fail=1
-    fi
+    both "$name" "tune, budget 100 per case" tune "$spec" --budget 100 --validation-seeds 4
     continue
   fi
   total=$("$new" plan "$spec" | awk '$1 == "runs" && !n++ { print $2 }')
   [[ $total =~ ^[0-9]+$ ]] || { echo "$name: plan printed no run count"; fail=1; continue; }
   count=$(( (total + max_runs - 1) / max_runs ))
-  for b in old new; do
-    "${!b}" sweep "$spec" -o "$work/$name.$b.h5" --threads "$threads" --shard "0/$count" -q --progress never \
-      >"$work/$name.$b.log" 2>&1 || { echo "$name: the $b binary failed"; cat "$work/$name.$b.log"; fail=1; }
-  done
-  if line=$("$new" compare "$work/$name.old.h5" "$work/$name.new.h5" 2>&1); then
-    echo "$name (shard 0/$count of $total runs): $(grep -o '[0-9]* identical' <<<"$line" | head -1)"
-  else
-    echo "$name (shard 0/$count of $total runs): DIFFERENT"; echo "$line" | head -20; fail=1
-  fi
+  both "$name" "shard 0/$count of $total runs" sweep "$spec" --shard "0/$count"
 done
 exit $fail
