@@ -28,12 +28,13 @@ both() {
 }
 for spec in "$src"/experiments/*.toml; do
   name=$(basename "$spec" .toml)
-  if "$new" plan "$spec" | head -1 | grep -q '^tune '; then
+  plan=$("$new" plan "$spec")
+  if [[ $plan == "tune "* ]]; then
     # A tune spec: the race of every case at a budget of 100 runs, 4 validation seeds.
     both "$name" "tune, budget 100 per case" tune "$spec" --budget 100 --validation-seeds 4
     continue
   fi
-  total=$("$new" plan "$spec" | awk '$1 == "runs" && !n++ { print $2 }')
+  total=$(awk '$1 == "runs" && !n++ { print $2 }' <<<"$plan")
   [[ $total =~ ^[0-9]+$ ]] || { echo "$name: plan printed no run count"; fail=1; continue; }
   count=$(( (total + max_runs - 1) / max_runs ))
   both "$name" "shard 0/$count of $total runs" sweep "$spec" --shard "0/$count"
