@@ -45,8 +45,12 @@ struct LaneArrays {
   alignas(64) double inv_cell[max_lanes], max_i[max_lanes], max_j[max_lanes];
   alignas(64) double cell_i[max_lanes], cell_j[max_lanes];
   // 0: no fast path; 1: steps that stay in their cell; 2: also steps into a
-  // neighbouring cell across one edge.
+  // neighbouring cell across one edge; 3 (segments sampling): also steps
+  // into a diagonal neighbour (mark_diagonal), in the kernel form for them.
   alignas(64) double fast[max_lanes];
+  // That form's: each lane's position before its last step (the segment's
+  // start, which mark_diagonal's crossing needs; X and Y hold its end).
+  alignas(64) double X0[max_lanes], Y0[max_lanes];
   // fast = 2: the integrator marks an entered cell itself in the run's grid
   // (CoverageGrid's bytes, max_i + 1 per row), counts it and stamps t_last_new.
   unsigned char* cells[max_lanes];

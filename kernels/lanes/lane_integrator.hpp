@@ -26,9 +26,10 @@ inline void lane_store(double* p, V v) {
 }
 
 // The steps fast_path applied (lane o in bit 0), and among them those that
-// entered a neighbouring cell (to be marked: mark_entered).
+// entered a neighbouring cell across an edge (to be marked: mark_entered) or
+// a corner (mark_diagonal).
 struct FastPathBits {
-  unsigned applied, entered;
+  unsigned applied, entered, diagonal;
 };
 
 // A vector's fixed inputs to fast_path: what only the sink changes (band,
@@ -38,7 +39,7 @@ struct FastPathBits {
 template <class V>
 struct FastPathInputs {
   V lo_x, hi_x, lo_y, hi_y, fh, inv, mi, mj, budget, stuck_time, niter;
-  decltype(V() < V()) fast_ok, fast_cross;                               // fast >= 1, fast == 2
+  decltype(V() < V()) fast_ok, fast_cross, fast_diag;                    // fast >= 1, >= 2, == 3
   V box_x0, box_x1, box_y0, box_y1, near_x0, near_x1, near_y0, near_y1;  // the general form's
   decltype(V() < V()) near_mirror;
 };
@@ -46,17 +47,29 @@ struct FastPathInputs {
 template <class V>
 inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
   const V fast = lane_load<V>(a.fast + o);
-  return {lane_load<V>(a.lo_x + o),    lane_load<V>(a.hi_x + o),
-          lane_load<V>(a.lo_y + o),    lane_load<V>(a.hi_y + o),
-          lane_load<V>(a.fh + o),      lane_load<V>(a.inv_cell + o),
-          lane_load<V>(a.max_i + o),   lane_load<V>(a.max_j + o),
-          lane_load<V>(a.budget + o),  lane_load<V>(a.stuck_time + o),
-          lane_load<V>(a.niter + o),   fast >= lane::splat<V>(1.0),
-          fast == lane::splat<V>(2.0), lane_load<V>(a.box_x0 + o),
-          lane_load<V>(a.box_x1 + o),  lane_load<V>(a.box_y0 + o),
-          lane_load<V>(a.box_y1 + o),  lane_load<V>(a.near_x0 + o),
-          lane_load<V>(a.near_x1 + o), lane_load<V>(a.near_y0 + o),
-          lane_load<V>(a.near_y1 + o), lane_load<V>(a.near_mirror + o) == lane::splat<V>(1.0)};
+  return {lane_load<V>(a.lo_x + o),
+          lane_load<V>(a.hi_x + o),
+          lane_load<V>(a.lo_y + o),
+          lane_load<V>(a.hi_y + o),
+          lane_load<V>(a.fh + o),
+          lane_load<V>(a.inv_cell + o),
+          lane_load<V>(a.max_i + o),
+          lane_load<V>(a.max_j + o),
+          lane_load<V>(a.budget + o),
+          lane_load<V>(a.stuck_time + o),
+          lane_load<V>(a.niter + o),
+          fast >= lane::splat<V>(1.0),
+          fast >= lane::splat<V>(2.0),
+          fast == lane::splat<V>(3.0),
+          lane_load<V>(a.box_x0 + o),
+          lane_load<V>(a.box_x1 + o),
+          lane_load<V>(a.box_y0 + o),
+          lane_load<V>(a.box_y1 + o),
+          lane_load<V>(a.near_x0 + o),
+          lane_load<V>(a.near_x1 + o),
+          lane_load<V>(a.near_y0 + o),
+          lane_load<V>(a.near_y1 + o),
+          lane_load<V>(a.near_mirror + o) == lane::splat<V>(1.0)};
 }
 
 // The step's common case, vectorised (see LaneArrays). Mirrors
@@ -65,8 +78,9 @@ inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
 // `passes`: the steps taken since the arrays' step and segment counts were
 // last brought up to date (count_steps), this one included. General: some
 // lane of the kernel has the fold boundary or obstacles (else the short form
-// for mirror lanes on open maps).
-template <class V, bool General>
+// for mirror lanes on open maps). Diagonal: the fast = 3 lanes' steps into a
+// diagonal neighbour are applied too (their start kept in X0, Y0).
+template <class V, bool General, bool Diagonal>
 inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, const Rk4Step<V>& s, V passes) {
   const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
@@ -141,7 +155,15 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   const V d2 = lane::fma(di, di, dj * dj);
   const auto quiet = ok & (d2 == lane::splat<V>(0.0));
   const auto entered = ok & c.fast_cross & (d2 == one);
-  const auto applied = quiet | entered;
+  auto applied = quiet | entered;
+  unsigned diagonal = 0;
+  if constexpr (Diagonal) {
+    const auto corner = ok & c.fast_diag & (d2 == lane::splat<V>(2.0));
+    applied = applied | corner;
+    diagonal = lane::bits(corner);
+    lane_store(a.X0 + o, X);
+    lane_store(a.Y0 + o, Y);
+  }
   lane_store(a.X + o, lane::select(applied, X1, X));
   lane_store(a.Y + o, lane::select(applied, Y1, Y));
   lane_store(a.t + o, lane::select(applied, t1, t));
@@ -151,7 +173,7 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   }
   lane_store(a.cell_i + o, lane::select(applied, ci, cell_i));
   lane_store(a.cell_j + o, lane::select(applied, cj, cell_j));
-  return {lane::bits(applied), lane::bits(entered)};
+  return {lane::bits(applied), lane::bits(entered), diagonal};
 }
 
 // Marks the cells the `entered` lanes' applied steps entered, as
@@ -199,6 +221,85 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
     a.t_last_new[l] = a.t[l];
     a.visited[l] += 1.0;
     if (a.visited[l] <= a.needed[l]) a.cover_sum[l] += a.t[l];  // CoverageGrid::note_time: one cell at t
+    if (a.visited[l] >= a.needed[l]) covered |= 1u << l;
+  }
+  return covered;
+}
+
+// Cell (i, j) of a diagonal step's crossing, as CoverageGrid::mark_cell
+// marks it: entered from the lane's last cell (pi, pj) (a visit, and a turn
+// by enter()'s rule: the longer axis of the jump, x on a tie), stamped in
+// the window, counted when new. Returns 1 for a new cell. A template on V as
+// mark_entered.
+template <class V>
+inline int mark_crossed_cell(LaneArrays& a, int l, long nx, long pi, long pj, long i, long j) {
+  const long k = j * nx + i;
+  unsigned char* cells = a.cells[l];
+  const unsigned char c = cells[k];
+  ++a.visits[l][k];
+  const long di = i - pi, dj = j - pj;
+  const int dir = (di < 0 ? -di : di) >= (dj < 0 ? -dj : dj) ? (di > 0 ? 0 : 2) : (dj > 0 ? 1 : 3);
+  if (a.last_dir[l] >= 0) ++a.turns[l][(dir - a.last_dir[l]) & 3];
+  a.last_dir[l] = dir;
+  a.cell_k[l] = k;
+  if (unsigned* stamp = a.stamp[l]; stamp != nullptr && c != 2 && stamp[k] != a.window[l]) {
+    stamp[k] = a.window[l];
+    ++a.window_distinct[l];
+  }
+  if (c != 0) return 0;
+  cells[k] = 1;
+  if (a.region[l] != nullptr) ++a.region_visited[l][a.region[l][k]];
+  return 1;
+}
+
+// Marks the cells the `diagonal` lanes' applied steps crossed into a
+// diagonal neighbour, as CoverageGrid::mark_step does under segments
+// sampling (its mark_crossing): the start cell again (window stamps only),
+// then the side cell the segment crosses first, by mark_crossing's own
+// t_max arithmetic (both side cells, x first, when it passes through the
+// corner), then the end cell; the new cells count at the step's time as one
+// note_time would (one product, not an addition per cell). Returns the lanes
+// whose count reached dc. Scalar: rarer than edge entries.
+template <class V>
+inline unsigned mark_diagonal(LaneArrays& a, unsigned diagonal) {
+  unsigned covered = 0;
+  for (; diagonal != 0; diagonal &= diagonal - 1) {
+    const int l = __builtin_ctz(diagonal);
+    const long nx = long(a.max_i[l]) + 1;
+    const long i0 = a.cell_k[l] % nx, j0 = a.cell_k[l] / nx;
+    const long i1 = long(a.cell_i[l]), j1 = long(a.cell_j[l]);
+    if (unsigned* stamp = a.stamp[l]; stamp != nullptr) {
+      const long k0 = a.cell_k[l];
+      if (a.cells[l][k0] != 2 && stamp[k0] != a.window[l]) {
+        stamp[k0] = a.window[l];
+        ++a.window_distinct[l];
+      }
+    }
+    const double inv = a.inv_cell[l];
+    const double gx0 = a.X0[l] * inv, gy0 = a.Y0[l] * inv;
+    const double dx = (a.X[l] - a.X0[l]) * inv, dy = (a.Y[l] - a.Y0[l]) * inv;
+    const double t_delta_x = 1.0 / __builtin_fabs(dx), t_delta_y = 1.0 / __builtin_fabs(dy);
+    const double t_max_x = i1 > i0 ? (double(i0 + 1) - gx0) * t_delta_x : (gx0 - double(i0)) * t_delta_x;
+    const double t_max_y = j1 > j0 ? (double(j0 + 1) - gy0) * t_delta_y : (gy0 - double(j0)) * t_delta_y;
+    int fresh = 0;
+    long pi = i0, pj = j0;       // the cell marked last
+    if (!(t_max_y < t_max_x)) {  // x first, or through the corner
+      fresh += mark_crossed_cell<V>(a, l, nx, pi, pj, i1, j0);
+      pi = i1;
+    }
+    if (!(t_max_x < t_max_y)) {
+      fresh += mark_crossed_cell<V>(a, l, nx, pi, pj, i0, j1);
+      pi = i0;
+      pj = j1;
+    }
+    fresh += mark_crossed_cell<V>(a, l, nx, pi, pj, i1, j1);
+    if (fresh == 0) continue;
+    const double before = a.visited[l];
+    a.visited[l] += double(fresh);
+    a.t_last_new[l] = a.t[l];
+    const double noted = before < a.needed[l] ? before : a.needed[l];
+    const double now = a.visited[l] < a.needed[l] ? a.visited[l] : a.needed[l];
+    if (now != noted) a.cover_sum[l] += (now - noted) * a.t[l];
     if (a.visited[l] >= a.needed[l]) covered |= 1u << l;
   }
   return covered;
@@ -289,7 +390,7 @@ struct StepsDone {
 // F: the system of the lanes' group (lane_group.hpp); a carried system by
 // its own step (F::step, F::step2 when Staged), any other by uncarried_step
 // (Staged ignored).
-template <class V, int N, bool Staged, bool General, class F>
+template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
 inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   const unsigned live = a.active & ((1u << (w * N)) - 1u);
@@ -327,12 +428,14 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
     } else {
       for (int k = 0; k < N; ++k) s[k] = F::step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
     }
-    unsigned entered = 0;
+    unsigned entered = 0, diagonal = 0;
     d.applied = 0;
     for (int k = 0; k < N; ++k) {
-      const FastPathBits b = fast_path<V, General>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)));
+      const FastPathBits b =
+          fast_path<V, General, Diagonal>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)));
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
+      diagonal |= b.diagonal << (k * w);
       if constexpr (carried) {
         in[k].u = s[k].u;
         in[k].t = s[k].t;
@@ -342,6 +445,7 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
     }
     d.flagged = ~d.applied & live;
     d.covered = mark_entered<V>(a, entered);
+    if constexpr (Diagonal) d.covered |= mark_diagonal<V>(a, diagonal);
     if ((d.flagged | d.covered) != 0)
       for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
   } while ((d.flagged | d.covered) == 0);
@@ -363,12 +467,20 @@ template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
     if (a.active == 0) return;  // (no lane would ever stop the steps)
-    bool general = false;
-    for (int l = 0; l < a.lanes; ++l) general |= a.fold[l] != 0.0 || a.obstacles[l];
+    bool general = false, diagonal = false;
+    for (int l = 0; l < a.lanes; ++l) {
+      general |= a.fold[l] != 0.0 || a.obstacles[l];
+      diagonal |= a.fast[l] == 3.0;
+    }
     StepsDone d;
     with_lane_group(a.system, [&](auto tag) {
       using F = typename decltype(tag)::type;
-      d = general ? steps_until_sink<V, N, Staged, true, F>(a) : steps_until_sink<V, N, Staged, false, F>(a);
+      if (diagonal)
+        d = general ? steps_until_sink<V, N, Staged, true, true, F>(a)
+                    : steps_until_sink<V, N, Staged, false, true, F>(a);
+      else
+        d = general ? steps_until_sink<V, N, Staged, true, false, F>(a)
+                    : steps_until_sink<V, N, Staged, false, false, F>(a);
     });
     count_steps<V>(a, d.passes, d.applied);
     a.flagged = d.flagged;
