@@ -186,10 +186,17 @@ ObstacleBox obstacle_box(const Environment& env, double fo, double x, double y, 
     // The four ways to cut g off (each leaves c disjoint from g) that keep (x, y).
     const Rect cuts[] = {
         {c.x0, c.y0, g.x0, c.y1}, {g.x1, c.y0, c.x1, c.y1}, {c.x0, c.y0, c.x1, g.y0}, {c.x0, g.y1, c.x1, c.y1}};
+    // The cut whose new edge lies farthest from (x, y): a lane leaves its
+    // box when a step ends beyond an edge, and the band's own edges never
+    // make it leave (a step reflects back into the band).
+    const double gap[] = {g.x0 - x, x - g.x1, g.y0 - y, y - g.y1};
     double most = -1;
-    for (const Rect& r : cuts)
-      if (r.x0 <= x && x <= r.x1 && r.y0 <= y && y <= r.y1 && (r.x1 - r.x0) * (r.y1 - r.y0) > most)
-        most = (r.x1 - r.x0) * (r.y1 - r.y0), c = r;
+    Rect best = c;
+    for (int q = 0; q < 4; ++q) {
+      const Rect& r = cuts[q];
+      if (r.x0 <= x && x <= r.x1 && r.y0 <= y && y <= r.y1 && gap[q] > most) most = gap[q], best = r;
+    }
+    c = best;
     ok = most >= 0;
   });
   if (!ok) return out;

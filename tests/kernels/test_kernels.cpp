@@ -553,7 +553,9 @@ TEST(CoverageGrid, MarksNothingOnlyWhenAMarkChangesNothing) {
       const bool nothing = g.marks_nothing(i, j);
       const State before = state();
       g.mark_cell(i, j);
-      if (nothing) ASSERT_EQ(state(), before) << "trial " << trial << ", point " << n;
+      if (nothing) {
+        ASSERT_EQ(state(), before) << "trial " << trial << ", point " << n;
+      }
       claimed += nothing;
       ++points;
     }

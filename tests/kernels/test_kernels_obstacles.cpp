@@ -184,6 +184,24 @@ TEST(ObstacleGeometry, IndexedQueriesAnswerAsAScanOfEveryObstacle) {
   }
 }
 
+// An obstacle is cut off a box on the side whose new edge lies farthest
+// from the robot (a lane leaves its box through such an edge), not on the
+// side that keeps the most area: here the cut above the obstacle keeps 3x
+// the area, 1 m from the robot; the cut left of it lies 3 m away.
+TEST(ObstacleGeometry, ABoxCutsAnObstacleOffFarthestFromTheRobot) {
+  const Environment env = test::square_map(50.0, {{13, 0, 40, 9}});
+  const ObstacleBox b = obstacle_box(env, 0.0, 10.0, 10.0, {0, 0, 50, 50}, 100.0, false);
+  EXPECT_EQ(b.box.x0, 0.0);
+  EXPECT_EQ(b.box.x1, 13.0);
+  EXPECT_EQ(b.box.y0, 0.0);
+  EXPECT_EQ(b.box.y1, 50.0);
+  // The robot above it, nearer the top face: the cut above, the box to the band's edges.
+  const ObstacleBox above = obstacle_box(env, 0.0, 30.0, 12.0, {0, 0, 50, 50}, 100.0, false);
+  EXPECT_EQ(above.box.y0, 9.0);
+  EXPECT_EQ(above.box.x0, 0.0);
+  EXPECT_EQ(above.box.x1, 50.0);
+}
+
 // The lanes apply Eq. 8 themselves inside a lane's obstacle box
 // (kernels/lanes): for every point P of the box, keep_out_of_obstacles must
 // move P only when the box's near obstacle (grown by fo) holds it, and then
