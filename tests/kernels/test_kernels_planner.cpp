@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <numbers>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "kernels/core/coverage_grid.hpp"
@@ -418,6 +421,93 @@ TEST(MapZoning, RunsWhenEq5FailsAndTransitsArrive) {
   EXPECT_GT(r.zonings, 0);
   EXPECT_EQ(r.transits, r.zonings);  // no obstacles: every transit arrives
   EXPECT_GT(r.transit_points, 0);
+}
+
+// A transit walks the points that stay in a cell which marks nothing and
+// meets no obstacle on a short path (transit_to; a trace turns it off, as it
+// records every point): every result is the traced run's, bit for bit, on
+// open maps and among obstacles, SR 1 and 4, both samplings, with runs
+// that end at the budget or stuck within a transit.
+TEST(Transit, QuietPointsGiveTheTracedRunsResults) {
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  int compared = 0, ended_in_transit = 0;
+  long quiet_points = 0;
+  for (const bool obstacles : {false, true})
+    for (const double sr : {1.0, 4.0})
+      for (const Sampling sampling : {Sampling::segments, Sampling::points})
+        for (const int end : {0, 1, 2}) {  // dc, a budget, a stuck time
+          const Environment env = obstacles ? square_map(40.0, {{10, 10, 18, 18}, {24, 22, 32, 30}}) : square_map(40.0);
+          RunParams p = small_run(40.0);
+          p.sr = sr;
+          p.map_zoning = 1;
+          p.c = 0.8;
+          p.dc = 0.95;
+          p.sampling = sampling;
+          p.max_time = end == 1 ? 900.0 + 37.0 * sr : 0.0;
+          p.stuck_time = end == 2 ? 25.0 : 0.0;
+          p.niter = 150;
+          Recorder trace;
+          const RunResult a = run_planner(p, env, &trace), b = run_planner(p, env);
+          const std::string what = std::string(obstacles ? "obstacles" : "open") + ", SR " + std::to_string(sr) + ", " +
+                                   to_string(sampling) + ", end " + std::to_string(end);
+          ASSERT_EQ(a.status, b.status) << what;
+          EXPECT_EQ(bits(a.coverage_time), bits(b.coverage_time)) << what;
+          EXPECT_EQ(bits(a.t_end), bits(b.t_end)) << what;
+          EXPECT_EQ(bits(a.final_x), bits(b.final_x)) << what;
+          EXPECT_EQ(bits(a.final_y), bits(b.final_y)) << what;
+          EXPECT_EQ(bits(a.coverage_area), bits(b.coverage_area)) << what;
+          EXPECT_EQ(bits(a.visit_evenness), bits(b.visit_evenness)) << what;
+          EXPECT_EQ(bits(a.turn_entropy), bits(b.turn_entropy)) << what;
+          EXPECT_EQ(a.steps, b.steps) << what;
+          EXPECT_EQ(a.visited_cells, b.visited_cells) << what;
+          EXPECT_EQ(a.segments, b.segments) << what;
+          EXPECT_EQ(a.zonings, b.zonings) << what;
+          EXPECT_EQ(a.transits, b.transits) << what;
+          EXPECT_EQ(a.zones_dropped, b.zones_dropped) << what;
+          EXPECT_EQ(a.transit_points, b.transit_points) << what;
+          EXPECT_EQ(a.transit_attempts, b.transit_attempts) << what;
+          ++compared;
+          quiet_points += b.transit_points;
+          ended_in_transit +=
+              a.status != Status::ok && !trace.points.empty() && trace.points.back().kind == SegmentKind::transit;
+        }
+  EXPECT_EQ(compared, 24);
+  EXPECT_GT(quiet_points, 10000);
+  EXPECT_GE(ended_in_transit, 2);  // the budget and the stuck time end a run within a transit too
+}
+
+// The same walk by transit_to alone, each transit starting a window of Eq.
+// 5 (a segment's): the quiet points leave the touches of the window, the
+// cells and the clock as the traced walk does (the robot's cell, not yet
+// touched in a new window, takes the full path: a point marks it, while a
+// segment would mark it on leaving it).
+TEST(Transit, QuietPointsCountTheWindowsTouches) {
+  for (const double sr : {1.0, 4.0})
+    for (const bool obstacles : {false, true})
+      for (const Sampling sampling : {Sampling::segments, Sampling::points}) {
+        RunParams p = mechanism_run(40.0);
+        p.sr = sr;
+        p.sampling = sampling;
+        const Environment env = obstacles ? square_map(40.0, {{10, 10, 18, 18}}) : square_map(40.0);
+        CoverageGrid traced_grid(env, p.sr), grid(env, p.sr);
+        RunResult traced_r, r;
+        traced_r.t_opt = r.t_opt = 1000;
+        Recorder trace;
+        PlannerRun traced(p, env, traced_grid, traced_r, &trace), run(p, env, grid, r, nullptr);
+        const Point goals[] = {{30, 6}, {33, 35}, {5, 30}, {21, 21}, {2, 2}};
+        for (const Point g : goals) {
+          traced_grid.begin_window();
+          grid.begin_window();
+          ASSERT_EQ(traced.transit_to(g), run.transit_to(g));
+          ASSERT_EQ(grid.window_distinct(), traced_grid.window_distinct())
+              << sr << " " << obstacles << " " << to_string(sampling);
+          ASSERT_EQ(grid.visited_cells(), traced_grid.visited_cells());
+          ASSERT_EQ(run.time(), traced.time());
+          ASSERT_EQ(run.position().x, traced.position().x);
+          ASSERT_EQ(run.position().y, traced.position().y);
+        }
+        EXPECT_GT(r.transit_points, 500);
+      }
 }
 
 TEST(LogisticPlanner, CoversTheMapWithLogisticSegmentsOnly) {

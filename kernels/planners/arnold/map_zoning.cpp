@@ -1,7 +1,10 @@
 // MapZoning (seed 000, Algorithm 2) and LogisticObstacleAvoid (Algorithm 4):
 // PlannerRun members (they drive its robot, clock and zones), declared in
 // planner_run.hpp.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "kernels/core/boundary.hpp"
 #include "kernels/math/inline_hypot.hpp"
@@ -55,7 +58,33 @@ bool PlannerRun::transit_to(Point goal) {
   if (!fresh_path(position())) return false;
   const bool open = env_.obstacles.empty();
   int ri = grid_.cell_x(robot_.x()), rj = grid_.cell_y(robot_.y());  // the robot's cell
+  // A transit's points fall ten (SR 1) to forty (SR 4) to a cell. While they
+  // stay in the robot's cell and that cell marks nothing and meets no
+  // obstacle, a point only moves the robot and the clock: after_move could
+  // end the run only by the budget or the stuck time then, and such a point
+  // takes the full path below. Not with a trace (it records every point) or
+  // distance-timed points.
+  const bool quiet_ok = trace_ == nullptr && p_.transit_time == TransitTime::points;
+  const double stuck = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
   for (std::size_t i = 1; i < P.size(); ++i) {
+    if (quiet_ok && grid_.visited_cells() == last_visited_ && grid_.marks_nothing(ri, rj) &&
+        (open || cell_clear(ri, rj))) {
+      bool moved = false;
+      double x = 0, y = 0;
+      for (; i < P.size(); ++i) {
+        const Point q = eq6.at(P, i);
+        const double qx = mirror_eq7(q.x, 0.0, env_.lx, p_.fo), qy = mirror_eq7(q.y, 0.0, env_.ly, p_.fo);
+        const double t = t_ + p_.dt_c;
+        if (!(std::isfinite(qx) && std::isfinite(qy) && grid_.cell_x(qx) == ri && grid_.cell_y(qy) == rj &&
+              t < budget_ && t - t_last_new_ < stuck))
+          break;
+        t_ = t;
+        ++r_.transit_points;
+        x = qx, y = qy, moved = true;
+      }
+      if (moved) robot_.set_position(x, y, x, y);  // as jump_within
+      if (i == P.size()) break;
+    }
     const Point q = eq6.at(P, i);
     // Eq. 7 near the walls, as on Arnold segments.
     double x = mirror_eq7(q.x, 0.0, env_.lx, p_.fo);
@@ -87,6 +116,27 @@ bool PlannerRun::transit_to(Point goal) {
     }
   }
   return true;
+}
+
+bool PlannerRun::cell_clear(int i, int j) {
+  // Found once per cell and run (0: not yet, 1: clear, 2: not): a transit
+  // enters a cell every ten to forty points.
+  if (clear_cells_.empty()) clear_cells_.assign(std::size_t(grid_.nx()) * std::size_t(grid_.ny()), 0);
+  std::uint8_t& known = clear_cells_[std::size_t(j) * std::size_t(grid_.nx()) + std::size_t(i)];
+  if (known == 0) known = meets_no_obstacle(i, j) ? 1 : 2;
+  return known == 1;
+}
+
+bool PlannerRun::meets_no_obstacle(int i, int j) const {
+  // The closed cell, a hair wider (a point's cell comes from x / SR
+  // rounded), the last row and column to the map's edge: obstacle_box cuts
+  // nothing off it when no obstacle meets it.
+  const double cell = grid_.cell_size(), e = 1e-9 * cell;
+  const double x1 = i + 1 == grid_.nx() ? std::max((i + 1) * cell, env_.lx) : (i + 1) * cell;
+  const double y1 = j + 1 == grid_.ny() ? std::max((j + 1) * cell, env_.ly) : (j + 1) * cell;
+  const Rect c{i * cell - e, j * cell - e, x1 + e, y1 + e};
+  const Rect b = obstacle_box(env_, 0.0, 0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1), c, 2 * cell, false).box;
+  return b.x0 == c.x0 && b.y0 == c.y0 && b.x1 == c.x1 && b.y1 == c.y1;
 }
 
 }  // namespace chaosweep

@@ -4,6 +4,7 @@
 // transits (Algorithms 2 and 4) and scaling, or Logistic-map segments only.
 // Scalar reference; the SIMD kernels reproduce its Arnold steps bit for bit.
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -73,6 +74,10 @@ class PlannerRun {
   // The run's zones, made at the first need (map zoning on: at the start),
   // the grid counting visited cells by zone from then on.
   const Zones& zones();
+  // Whether no point of cell (i, j) lies in an obstacle: meets_no_obstacle,
+  // kept per cell in clear_cells_ (transit_to).
+  bool cell_clear(int i, int j);
+  bool meets_no_obstacle(int i, int j) const;
   // The lane marshalling copies the whole state into a lane and back: a
   // friend rather than accessors for every member.
   friend class LaneBinding;
@@ -99,10 +104,11 @@ class PlannerRun {
   long last_visited_;
   int th_;
   RobotMotion robot_;
-  LogisticOrbit logistic_;                // the transits' (MapZoning)
-  double planner_x_;                      // the Logistic planner's iterate, from the same x0
-  std::shared_ptr<const Zones> zones_;    // null until zones()
-  std::vector<Point> transit_positions_;  // transit_to's, kept for their storage
+  LogisticOrbit logistic_;                 // the transits' (MapZoning)
+  double planner_x_;                       // the Logistic planner's iterate, from the same x0
+  std::shared_ptr<const Zones> zones_;     // null until zones()
+  std::vector<Point> transit_positions_;   // transit_to's, kept for their storage
+  std::vector<std::uint8_t> clear_cells_;  // see cell_clear (empty until its first use)
   bool ended_ = false;
   bool rightwards_ = true;  // the Logistic planner's branch in this segment
   int seg_step_ = 0;

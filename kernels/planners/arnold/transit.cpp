@@ -12,10 +12,15 @@ bool logistic_positions(Point start, Point goal, double v, double dt_c, Logistic
   const bool rightwards = goal.x >= start.x;
   p.resize(m);
   p[0] = start;
+  // The running position in registers: read back from p, each point waited
+  // on the store of the one before.
+  double x = start.x, y = start.y;
   for (std::size_t i = 1; i < m; ++i) {
     const LogisticOrbit::Heading h = map.next(rightwards);
     if (!h.ok) return p.clear(), false;
-    p[i] = {p[i - 1].x + dt_c * v * h.cos, p[i - 1].y + dt_c * v * h.sin};
+    x = x + dt_c * v * h.cos;
+    y = y + dt_c * v * h.sin;
+    p[i] = {x, y};
   }
   return true;
 }
