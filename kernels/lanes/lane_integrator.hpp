@@ -46,30 +46,31 @@ struct FastPathInputs {
 
 template <class V>
 inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
-  const V fast = lane_load<V>(a.fast + o);
-  return {lane_load<V>(a.lo_x + o),
-          lane_load<V>(a.hi_x + o),
-          lane_load<V>(a.lo_y + o),
-          lane_load<V>(a.hi_y + o),
-          lane_load<V>(a.fh + o),
-          lane_load<V>(a.inv_cell + o),
-          lane_load<V>(a.max_i + o),
-          lane_load<V>(a.max_j + o),
-          lane_load<V>(a.budget + o),
-          lane_load<V>(a.stuck_time + o),
-          lane_load<V>(a.niter + o),
+  const auto at = [o](const double* p) { return lane_load<V>(p + o); };
+  const V fast = at(a.fast);
+  return {at(a.lo_x),
+          at(a.hi_x),
+          at(a.lo_y),
+          at(a.hi_y),
+          at(a.fh),
+          at(a.inv_cell),
+          at(a.max_i),
+          at(a.max_j),
+          at(a.budget),
+          at(a.stuck_time),
+          at(a.niter),
           fast >= lane::splat<V>(1.0),
           fast >= lane::splat<V>(2.0),
           fast == lane::splat<V>(3.0),
-          lane_load<V>(a.box_x0 + o),
-          lane_load<V>(a.box_x1 + o),
-          lane_load<V>(a.box_y0 + o),
-          lane_load<V>(a.box_y1 + o),
-          lane_load<V>(a.near_x0 + o),
-          lane_load<V>(a.near_x1 + o),
-          lane_load<V>(a.near_y0 + o),
-          lane_load<V>(a.near_y1 + o),
-          lane_load<V>(a.near_mirror + o) == lane::splat<V>(1.0)};
+          at(a.box_x0),
+          at(a.box_x1),
+          at(a.box_y0),
+          at(a.box_y1),
+          at(a.near_x0),
+          at(a.near_x1),
+          at(a.near_y0),
+          at(a.near_y1),
+          at(a.near_mirror) == lane::splat<V>(1.0)};
 }
 
 // The step's common case, vectorised (see LaneArrays). Mirrors
