@@ -388,11 +388,15 @@ struct StepsDone {
 
 // Steps the lanes from the arrays' state, keeping it in registers, until a
 // step leaves the sink work; stores every lane's state after that step.
+// One function per form (flatten: the step and fast path inline into it;
+// noinline: kept out of integrate_lanes), so that each form's loop is laid
+// out on its own: inlined together, the fourth form (Diagonal) made the
+// others 1.03x slower on 50 m SR 1 five squares (BENCHMARKS.md).
 // F: the system of the lanes' group (lane_group.hpp); a carried system by
 // its own step (F::step, F::step2 when Staged), any other by uncarried_step
 // (Staged ignored).
 template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
-inline StepsDone steps_until_sink(LaneArrays& a) {
+[[gnu::flatten, gnu::noinline]] inline StepsDone steps_until_sink(LaneArrays& a) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   const unsigned live = a.active & ((1u << (w * N)) - 1u);
   constexpr bool carried = CarriedSystem<F>;
@@ -457,9 +461,9 @@ inline StepsDone steps_until_sink(LaneArrays& a) {
 // lane_count). Their system state stays in registers from step to step while
 // no lane needs the sink; before the sink runs, every lane's state goes to
 // the arrays, and after it comes back from them (the sink may rewrite any).
-// flatten: the step and the fast path inline into one loop body, one for
-// lanes that are all under the mirror boundary on open maps and one for the
-// others.
+// The step and the fast path inline into one loop body per form
+// (steps_until_sink): lanes all under the mirror boundary on open maps or
+// not (General), taking diagonal steps or not (Diagonal).
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
 // The lanes all run one group (a.system, LaneArrays::system, lane_group.hpp):
 // a carried system's own step (the Arnold flow's), or one uncarried_step per
