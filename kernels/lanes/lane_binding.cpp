@@ -124,8 +124,8 @@ void LaneBinding::write_robot(LaneArrays& a, int l) {
   // point marks only its end cell) when the robot's step is a sizeable part
   // of a cell: there they were most of the steps left to the sink (the
   // map-zoning runs of Table 1, f 1.5-6 on 1 m cells). With short steps they
-  // are rare, and the kernel form that takes them measured 1.03-1.06x the CPU
-  // time on five-squares maps (BENCHMARKS.md "Diagonal steps in the lanes").
+  // are rare, and the kernel form that takes them measured up to 1.06x the
+  // CPU time on five-squares maps (BENCHMARKS.md "Diagonal steps in the lanes").
   const double step_cells =
       (logistic() ? run_.p_.dt_c * run_.p_.v : run_.p_.f * run_.p_.v * run_.h_) * run_.grid_.inv_cell_size();
   if (a.fast[l] == 2.0 && run_.p_.sampling == Sampling::segments && step_cells >= diagonal_step_cells) a.fast[l] = 3.0;

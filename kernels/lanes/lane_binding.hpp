@@ -14,9 +14,10 @@
 namespace chaosweep {
 
 // The robot's step, in cells, from which a lane takes its steps into a
-// diagonal neighbour itself (LaneArrays::fast = 3): measured on SR 1 maps,
-// at 0.2 (f 2) that kernel form ran 0.92-0.93x the CPU time, at 0.1 (f 1)
-// 0.98x on open maps and 1.01-1.05x on five squares.
+// diagonal neighbour itself (LaneArrays::fast = 3): measured on SR 1 maps
+// (bench --variants, before the boxes' cut rule and one function per
+// kernel form), at 0.2 (f 2) that kernel form ran 0.92-0.99x the CPU time,
+// at 0.1 (f 1) 0.96-0.98x on open maps and 0.99-1.05x on five squares.
 inline constexpr double diagonal_step_cells = 0.15;
 
 // Step-driven use of a PlannerRun by the lane integrators, which compute
