@@ -227,6 +227,17 @@ inline unsigned mark_entered(LaneArrays& a, unsigned entered) {
   return covered;
 }
 
+// A touch of cell k (byte c) in Eq. 5's window, as CoverageGrid::mark_cell
+// counts it: a free cell not yet stamped in this window. A template on V as
+// mark_entered.
+template <class V>
+inline void touch_window(LaneArrays& a, int l, long k, unsigned char c) {
+  if (unsigned* stamp = a.stamp[l]; stamp != nullptr && c != 2 && stamp[k] != a.window[l]) {
+    stamp[k] = a.window[l];
+    ++a.window_distinct[l];
+  }
+}
+
 // Cell (i, j) of a diagonal step's crossing, as CoverageGrid::mark_cell
 // marks it: entered from the lane's last cell (pi, pj) (a visit, and a turn
 // by enter()'s rule: the longer axis of the jump, x on a tie), stamped in
@@ -243,10 +254,7 @@ inline int mark_crossed_cell(LaneArrays& a, int l, long nx, long pi, long pj, lo
   if (a.last_dir[l] >= 0) ++a.turns[l][(dir - a.last_dir[l]) & 3];
   a.last_dir[l] = dir;
   a.cell_k[l] = k;
-  if (unsigned* stamp = a.stamp[l]; stamp != nullptr && c != 2 && stamp[k] != a.window[l]) {
-    stamp[k] = a.window[l];
-    ++a.window_distinct[l];
-  }
+  touch_window<V>(a, l, k, c);
   if (c != 0) return 0;
   cells[k] = 1;
   if (a.region[l] != nullptr) ++a.region_visited[l][a.region[l][k]];
@@ -269,13 +277,7 @@ inline unsigned mark_diagonal(LaneArrays& a, unsigned diagonal) {
     const long nx = long(a.max_i[l]) + 1;
     const long i0 = a.cell_k[l] % nx, j0 = a.cell_k[l] / nx;
     const long i1 = long(a.cell_i[l]), j1 = long(a.cell_j[l]);
-    if (unsigned* stamp = a.stamp[l]; stamp != nullptr) {
-      const long k0 = a.cell_k[l];
-      if (a.cells[l][k0] != 2 && stamp[k0] != a.window[l]) {
-        stamp[k0] = a.window[l];
-        ++a.window_distinct[l];
-      }
-    }
+    touch_window<V>(a, l, a.cell_k[l], a.cells[l][a.cell_k[l]]);
     const double inv = a.inv_cell[l];
     const double gx0 = a.X0[l] * inv, gy0 = a.Y0[l] * inv;
     const double dx = (a.X[l] - a.X0[l]) * inv, dy = (a.Y[l] - a.Y0[l]) * inv;
