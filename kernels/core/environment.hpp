@@ -85,8 +85,9 @@ struct ObstacleBox {
 };
 ObstacleBox obstacle_box(const Environment& env, double fo, double x, double y, const Rect& band, double reach,
                          bool with_near);
-// The reach its users give it, in cells of the coverage grid: a wide box is
-// left less often; on a map of many obstacles a box is cut much smaller anyway.
+// The reach RobotMotion's clear box gets, in cells of the coverage grid (the
+// lanes' boxes reach across the band, lane_binding.cpp): a wide box is left
+// less often; on a map of many obstacles a box is cut much smaller anyway.
 inline constexpr double obstacle_box_reach_cells = 16;
 
 }  // namespace chaosweep

@@ -45,6 +45,16 @@ class SharedOrbit {
     return at_ != end_ ? at_++ : next_block(fill);
   }
   double& state() { return x_; }
+  // Up to n values at once, [first, last), from the block being read: what
+  // n calls of take() would give while the block lasts (empty: the next
+  // value is the run's own or a new block's, take() it). A caller that
+  // stops early gives the values it did not read back (give_back).
+  void take_span(long n, const Value*& first, const Value*& last) {
+    first = at_;
+    at_ += std::min(n, long(end_ - at_));
+    last = at_;
+  }
+  void give_back(long n) { at_ -= n; }
 
  private:
   // Block j holds 64 * 2^j values (at most 2^16) after the span before it

@@ -30,6 +30,7 @@ inline void lane_store(double* p, V v) {
 // a corner (mark_diagonal).
 struct FastPathBits {
   unsigned applied, entered, diagonal;
+  unsigned ahead;  // marking lanes whose step, repeated, would leave the cell (see prefetch_ahead)
 };
 
 // A vector's fixed inputs to fast_path: what only the sink changes (band,
@@ -82,7 +83,8 @@ inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
 // for mirror lanes on open maps). Diagonal: the fast = 3 lanes' steps into a
 // diagonal neighbour are applied too (their start kept in X0, Y0).
 template <class V, bool General, bool Diagonal>
-inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, const Rk4Step<V>& s, V passes) {
+inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, const Rk4Step<V>& s, V passes,
+                              double* ahead_k) {
   const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
   const V lo_x = c.lo_x, hi_x = c.hi_x, lo_y = c.lo_y, hi_y = c.hi_y;
@@ -174,7 +176,38 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   }
   lane_store(a.cell_i + o, lane::select(applied, ci, cell_i));
   lane_store(a.cell_j + o, lane::select(applied, cj, cell_j));
-  return {lane::bits(applied), lane::bits(entered), diagonal};
+  unsigned ahead = 0;
+  if constexpr (Diagonal) {
+    // The cell the same step again would reach (a heading turns little from
+    // step to step): its index, for the lanes that mark and would leave their
+    // cell (clamped into the grid; a NaN goes to 0). Only in this form: its
+    // lanes' steps are long enough to enter a cell every few steps.
+    const V zero = lane::splat<V>(0.0);
+    V ai = lane::trunc((X1 + s.dX) * c.inv), aj = lane::trunc((Y1 + s.dY) * c.inv);
+    ai = lane::select(ai > zero, ai, zero);
+    aj = lane::select(aj > zero, aj, zero);
+    ai = lane::select(ai < c.mi, ai, c.mi);
+    aj = lane::select(aj < c.mj, aj, c.mj);
+    lane_store(ahead_k, lane::fma(aj, c.mi + one, ai));
+    ahead = lane::bits(applied & c.fast_cross & ((ai != ci) | (aj != cj)));
+  }
+  return {lane::bits(applied), lane::bits(entered), diagonal, ahead};
+}
+
+// Fetches the memory a lane's next cell entry marks (its grid byte, window
+// stamp, visit count and zone) for the `ahead` lanes, at the cells their
+// step repeated would reach (ahead_k), while the next step is computed: the
+// 16 lanes are 16 runs' grids, MiBs apart, and at f 3 to 6 (a step of a
+// third of a cell or more) mark_entered's loads waited on them.
+inline void prefetch_ahead(const LaneArrays& a, unsigned ahead, const double* ahead_k) {
+  for (; ahead != 0; ahead &= ahead - 1) {
+    const int l = __builtin_ctz(ahead);
+    const long k = long(ahead_k[l]);
+    __builtin_prefetch(a.cells[l] + k);
+    __builtin_prefetch(a.visits[l] + k);
+    if (a.stamp[l] != nullptr) __builtin_prefetch(a.stamp[l] + k);
+    if (a.region[l] != nullptr) __builtin_prefetch(a.region[l] + k);
+  }
 }
 
 // Marks the cells the `entered` lanes' applied steps entered, as
@@ -435,14 +468,16 @@ template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
     } else {
       for (int k = 0; k < N; ++k) s[k] = F::step(in[k].u, in[k].t, in[k].sc, HeadingZ{}, in[k].small);
     }
-    unsigned entered = 0, diagonal = 0;
+    unsigned entered = 0, diagonal = 0, ahead = 0;
+    alignas(64) double ahead_k[w * N];
     d.applied = 0;
     for (int k = 0; k < N; ++k) {
       const FastPathBits b =
-          fast_path<V, General, Diagonal>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)));
+          fast_path<V, General, Diagonal>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)), ahead_k + k * w);
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
       diagonal |= b.diagonal << (k * w);
+      ahead |= b.ahead << (k * w);
       if constexpr (carried) {
         in[k].u = s[k].u;
         in[k].t = s[k].t;
@@ -453,6 +488,7 @@ template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
     d.flagged = ~d.applied & live;
     d.covered = mark_entered<V>(a, entered);
     if constexpr (Diagonal) d.covered |= mark_diagonal<V>(a, diagonal);
+    if constexpr (Diagonal) prefetch_ahead(a, ahead & ~(d.flagged | d.covered), ahead_k);
     if ((d.flagged | d.covered) != 0)
       for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
   } while ((d.flagged | d.covered) == 0);

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "kernels/core/coverage_grid.hpp"
@@ -195,6 +196,67 @@ TEST(LogisticOrbit, DrawsTheMapsIteratesAndHeadingsWhoeverBuiltTheBlocks) {
       check(n % 3 == 0 ? first : second, n, "behind");
     }
     for (int n = 0; n < draws; ++n) check(third, n, "third");
+  }
+}
+
+// headings(n, ...) gives what n calls of next() give, whatever spans it
+// reads the shared blocks in: chunks of many sizes across the run's own
+// draws and the blocks' ends, a second orbit building the blocks the first
+// only marked, a third reading them; and it stops at the first degenerate
+// iterate as next() says it, the orbit's place and x() where next() leaves
+// them (r 2.5 from 0.1 lands on its fixed point inside a shared block).
+TEST(LogisticOrbit, HeadingsInSpansDrawWhatNextDraws) {
+  for (const auto& [r, x0, degenerate] : {std::tuple{4.0, 0.2345678, false}, std::tuple{2.5, 0.1, true}}) {
+    const int draws = 9000;
+    struct Drawn {
+      double x, cos, sin;
+      bool ok;
+    };
+    std::vector<Drawn> expected;  // by next(), one at a time
+    LogisticOrbit reference(r, x0);
+    const auto right = [](int n) { return (n / 97) % 2 == 0; };  // the branch a chunk starting at n asks for
+    const int sizes[] = {1, 5, 37, 200, 3, 1000, 64};
+    for (int n = 0, c = 0; n < draws; ++c) {
+      const int size = std::min(sizes[c % 7], draws - n);
+      for (int k = 0; k < size; ++k) {
+        const LogisticOrbit::Heading h = reference.next(right(n));
+        expected.push_back({h.x, h.cos, h.sin, h.ok});
+      }
+      n += size;
+    }
+    int stop = draws;
+    for (int n = 0; n < draws; ++n)
+      if (!expected[std::size_t(n)].ok) {
+        stop = n;
+        break;
+      }
+    if (degenerate) ASSERT_GT(stop, 40) << "the degenerate iterate must lie in a shared block";
+    else ASSERT_EQ(stop, draws);
+    for (const char* who : {"builder", "reader"}) {
+      LogisticOrbit o(r, x0);
+      int n = 0;
+      for (int c = 0; n < stop; ++c) {
+        const int size = std::min(sizes[c % 7], draws - n);
+        int k = 0;
+        const bool ok = o.headings(size, right(n), [&](double cos, double sin) {
+          const Drawn& e = expected[std::size_t(n + k)];
+          ASSERT_EQ(cos, e.cos) << who << ", r " << r << ", n " << n + k;
+          ASSERT_EQ(sin, e.sin) << who << ", r " << r << ", n " << n + k;
+          ++k;
+        });
+        if (!ok) {
+          ASSERT_EQ(n + k, stop) << who << ", r " << r;
+          ASSERT_EQ(o.x(), expected[std::size_t(stop)].x) << who << ", r " << r;
+          // The orbit goes on after the degenerate iterate as next()'s would.
+          ASSERT_EQ(o.next(true).x, expected[std::size_t(stop) + 1].x) << who << ", r " << r;
+          break;
+        }
+        ASSERT_EQ(k, size);
+        n += size;
+        ASSERT_EQ(o.x(), expected[std::size_t(n) - 1].x) << who << ", r " << r << ", n " << n;
+      }
+      ASSERT_EQ(degenerate, n < draws) << who << ", r " << r;
+    }
   }
 }
 

@@ -15,14 +15,14 @@ bool logistic_positions(Point start, Point goal, double v, double dt_c, Logistic
   // The running position in registers: read back from p, each point waited
   // on the store of the one before.
   double x = start.x, y = start.y;
-  for (std::size_t i = 1; i < m; ++i) {
-    const LogisticOrbit::Heading h = map.next(rightwards);
-    if (!h.ok) return p.clear(), false;
-    x = x + dt_c * v * h.cos;
-    y = y + dt_c * v * h.sin;
-    p[i] = {x, y};
-  }
-  return true;
+  Point* at = p.data() + 1;
+  const bool ok = map.headings(long(m - 1), rightwards, [&](double cos, double sin) {
+    x = x + dt_c * v * cos;
+    y = y + dt_c * v * sin;
+    *at++ = {x, y};
+  });
+  if (!ok) p.clear();
+  return ok;
 }
 
 std::vector<Point> logistic_positions(Point start, Point goal, double v, double dt_c, LogisticOrbit& map) {
