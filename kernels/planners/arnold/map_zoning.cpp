@@ -73,20 +73,26 @@ bool PlannerRun::transit_to(Point goal) {
   for (std::size_t i = 1; i < P.size(); ++i) {
     if (quiet_ok && grid_.visited_cells() == last_visited_ && grid_.marks_nothing(ri, rj) &&
         (open || cell_clear(ri, rj))) {
-      bool moved = false;
-      double x = 0, y = 0;
+      // Clock and count in locals, stored once after the loop: stored at
+      // every point, they chained the points through memory (and every
+      // member the loop reads was loaded again after each store).
+      const std::size_t first = i;
+      double t = t_, x = 0, y = 0;
       for (; i < P.size(); ++i) {
         const Point q = eq6.at(P, i);
         const double qx = mirror_eq7(q.x, 0.0, env_.lx, p_.fo), qy = mirror_eq7(q.y, 0.0, env_.ly, p_.fo);
-        const double t = t_ + p_.dt_c;
+        const double tn = t + p_.dt_c;
         if (!(std::isfinite(qx) && std::isfinite(qy) && grid_.cell_x(qx) == ri && grid_.cell_y(qy) == rj &&
-              t < budget_ && t - t_last_new_ < stuck))
+              tn < budget_ && tn - t_last_new_ < stuck))
           break;
-        t_ = t;
-        ++r_.transit_points;
-        x = qx, y = qy, moved = true;
+        t = tn;
+        x = qx, y = qy;
       }
-      if (moved) robot_.set_position(x, y, x, y);  // as jump_within
+      if (i > first) {
+        t_ = t;
+        r_.transit_points += std::int64_t(i - first);
+        robot_.set_position(x, y, x, y);  // as jump_within
+      }
       if (i == P.size()) break;
     }
     const Point q = eq6.at(P, i);
