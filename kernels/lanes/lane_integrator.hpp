@@ -84,7 +84,7 @@ inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
 // diagonal neighbour are applied too (their start kept in X0, Y0).
 template <class V, bool General, bool Diagonal>
 inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, const Rk4Step<V>& s, V passes,
-                              double* ahead_k) {
+                              bool prefetch, double* ahead_k) {
   const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
   const V lo_x = c.lo_x, hi_x = c.hi_x, lo_y = c.lo_y, hi_y = c.hi_y;
@@ -177,7 +177,7 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   lane_store(a.cell_i + o, lane::select(applied, ci, cell_i));
   lane_store(a.cell_j + o, lane::select(applied, cj, cell_j));
   unsigned ahead = 0;
-  if constexpr (Diagonal) {
+  if (Diagonal && prefetch) {
     // The cell the same step again would reach (a heading turns little from
     // step to step): its index, for the lanes that mark and would leave their
     // cell (clamped into the grid; a NaN goes to 0). Only in this form: its
@@ -193,6 +193,13 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   }
   return {lane::bits(applied), lane::bits(entered), diagonal, ahead};
 }
+
+// The grids (in cells) from which the lanes prefetch (prefetch_ahead): 16
+// runs' grids of 2,500 cells (50 m SR 1; 13 bytes a cell) stay in the
+// caches, and the prefetch's work made those maps' diagonal-form cells up
+// to 1.11x slower (BENCHMARKS.md "Prefetching the next marks"); 40,000
+// (200 m SR 1) gained up to 0.86x.
+inline constexpr double prefetch_grid_cells = 8192;
 
 // Fetches the memory a lane's next cell entry marks (its grid byte, window
 // stamp, visit count and zone) for the `ahead` lanes, at the cells their
@@ -431,7 +438,7 @@ struct StepsDone {
 // its own step (F::step, F::step2 when Staged), any other by uncarried_step
 // (Staged ignored).
 template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
-[[gnu::flatten, gnu::noinline]] inline StepsDone steps_until_sink(LaneArrays& a) {
+[[gnu::flatten, gnu::noinline]] inline StepsDone steps_until_sink(LaneArrays& a, bool prefetch) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   const unsigned live = a.active & ((1u << (w * N)) - 1u);
   constexpr bool carried = CarriedSystem<F>;
@@ -472,8 +479,8 @@ template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
     alignas(64) double ahead_k[w * N];
     d.applied = 0;
     for (int k = 0; k < N; ++k) {
-      const FastPathBits b =
-          fast_path<V, General, Diagonal>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)), ahead_k + k * w);
+      const FastPathBits b = fast_path<V, General, Diagonal>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)),
+                                                             prefetch, ahead_k + k * w);
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
       diagonal |= b.diagonal << (k * w);
@@ -488,7 +495,7 @@ template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
     d.flagged = ~d.applied & live;
     d.covered = mark_entered<V>(a, entered);
     if constexpr (Diagonal) d.covered |= mark_diagonal<V>(a, diagonal);
-    if constexpr (Diagonal) prefetch_ahead(a, ahead & ~(d.flagged | d.covered), ahead_k);
+    if (Diagonal && prefetch) prefetch_ahead(a, ahead & ~(d.flagged | d.covered), ahead_k);
     if ((d.flagged | d.covered) != 0)
       for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
   } while ((d.flagged | d.covered) == 0);
@@ -510,20 +517,21 @@ template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
     if (a.active == 0) return;  // (no lane would ever stop the steps)
-    bool general = false, diagonal = false;
+    bool general = false, diagonal = false, prefetch = false;
     for (int l = 0; l < a.lanes; ++l) {
       general |= a.fold[l] != 0.0 || a.obstacles[l];
       diagonal |= a.fast[l] == 3.0;
+      prefetch |= (a.max_i[l] + 1.0) * (a.max_j[l] + 1.0) >= prefetch_grid_cells;
     }
     StepsDone d;
     with_lane_group(a.system, [&](auto tag) {
       using F = typename decltype(tag)::type;
       if (diagonal)
-        d = general ? steps_until_sink<V, N, Staged, true, true, F>(a)
-                    : steps_until_sink<V, N, Staged, false, true, F>(a);
+        d = general ? steps_until_sink<V, N, Staged, true, true, F>(a, prefetch)
+                    : steps_until_sink<V, N, Staged, false, true, F>(a, prefetch);
       else
-        d = general ? steps_until_sink<V, N, Staged, true, false, F>(a)
-                    : steps_until_sink<V, N, Staged, false, false, F>(a);
+        d = general ? steps_until_sink<V, N, Staged, true, false, F>(a, prefetch)
+                    : steps_until_sink<V, N, Staged, false, false, F>(a, prefetch);
     });
     count_steps<V>(a, d.passes, d.applied);
     a.flagged = d.flagged;

@@ -73,9 +73,9 @@ bool PlannerRun::transit_to(Point goal) {
   for (std::size_t i = 1; i < P.size(); ++i) {
     if (quiet_ok && grid_.visited_cells() == last_visited_ && grid_.marks_nothing(ri, rj) &&
         (open || cell_clear(ri, rj))) {
-      // Clock and count in locals, stored once after the loop: stored at
-      // every point, they chained the points through memory (and every
-      // member the loop reads was loaded again after each store).
+      // Clock and count in locals, stored once after the loop (stores at
+      // every point made the loop load its members again after each one;
+      // measured within noise, BENCHMARKS.md).
       const std::size_t first = i;
       double t = t_, x = 0, y = 0;
       for (; i < P.size(); ++i) {
