@@ -206,7 +206,9 @@ TEST(LogisticOrbit, DrawsTheMapsIteratesAndHeadingsWhoeverBuiltTheBlocks) {
 // iterate as next() says it, the orbit's place and x() where next() leaves
 // them (r 2.5 from 0.1 lands on its fixed point inside a shared block).
 TEST(LogisticOrbit, HeadingsInSpansDrawWhatNextDraws) {
-  for (const auto& [r, x0, degenerate] : {std::tuple{4.0, 0.2345678, false}, std::tuple{2.5, 0.1, true}}) {
+  for (const auto& orbit : {std::tuple{4.0, 0.2345678, false}, std::tuple{2.5, 0.1, true}}) {
+    const auto [r, x0, degenerate] = orbit;
+    const double rate = r;  // the lambda below names it (clang captures no structured binding)
     const int draws = 9000;
     struct Drawn {
       double x, cos, sin;
@@ -240,8 +242,8 @@ TEST(LogisticOrbit, HeadingsInSpansDrawWhatNextDraws) {
         int k = 0;
         const bool ok = o.headings(size, right(n), [&](double cos, double sin) {
           const Drawn& e = expected[std::size_t(n + k)];
-          ASSERT_EQ(cos, e.cos) << who << ", r " << r << ", n " << n + k;
-          ASSERT_EQ(sin, e.sin) << who << ", r " << r << ", n " << n + k;
+          ASSERT_EQ(cos, e.cos) << who << ", r " << rate << ", n " << n + k;
+          ASSERT_EQ(sin, e.sin) << who << ", r " << rate << ", n " << n + k;
           ++k;
         });
         if (!ok) {
