@@ -205,7 +205,9 @@ inline constexpr double prefetch_grid_cells = 8192;
 // stamp, visit count and zone) for the `ahead` lanes, at the cells their
 // step repeated would reach (ahead_k), while the next step is computed: the
 // 16 lanes are 16 runs' grids, MiBs apart, and at f 3 to 6 (a step of a
-// third of a cell or more) mark_entered's loads waited on them.
+// third of a cell or more) mark_entered's loads waited on them. A template
+// on V as mark_entered.
+template <class V>
 inline void prefetch_ahead(const LaneArrays& a, unsigned ahead, const double* ahead_k) {
   for (; ahead != 0; ahead &= ahead - 1) {
     const int l = __builtin_ctz(ahead);
@@ -495,7 +497,7 @@ template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
     d.flagged = ~d.applied & live;
     d.covered = mark_entered<V>(a, entered);
     if constexpr (Diagonal) d.covered |= mark_diagonal<V>(a, diagonal);
-    if (Diagonal && prefetch) prefetch_ahead(a, ahead & ~(d.flagged | d.covered), ahead_k);
+    if (Diagonal && prefetch) prefetch_ahead<V>(a, ahead & ~(d.flagged | d.covered), ahead_k);
     if ((d.flagged | d.covered) != 0)
       for (int k = 0; k < N; ++k) store_step(a, k * w, s[k]);
   } while ((d.flagged | d.covered) == 0);

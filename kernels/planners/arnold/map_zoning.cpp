@@ -56,6 +56,12 @@ bool PlannerRun::transit_to(Point goal) {
     return true;
   };
   if (!fresh_path(position())) return false;
+  // Point k of the path as the robot would reach it: Eq. 6, then Eq. 7 near
+  // the walls, as on Arnold segments.
+  const auto mapped = [&](std::size_t k) {
+    const Point q = eq6.at(P, k);
+    return Point{mirror_eq7(q.x, 0.0, env_.lx, p_.fo), mirror_eq7(q.y, 0.0, env_.ly, p_.fo)};
+  };
   const bool open = env_.obstacles.empty();
   int ri = grid_.cell_x(robot_.x()), rj = grid_.cell_y(robot_.y());  // the robot's cell
   // A transit's points fall ten (SR 1) to forty (SR 4) to a cell. While they
@@ -79,8 +85,7 @@ bool PlannerRun::transit_to(Point goal) {
       const std::size_t first = i;
       double t = t_, x = 0, y = 0;
       for (; i < P.size(); ++i) {
-        const Point q = eq6.at(P, i);
-        const double qx = mirror_eq7(q.x, 0.0, env_.lx, p_.fo), qy = mirror_eq7(q.y, 0.0, env_.ly, p_.fo);
+        const auto [qx, qy] = mapped(i);
         const double tn = t + p_.dt_c;
         if (!(std::isfinite(qx) && std::isfinite(qy) && grid_.cell_x(qx) == ri && grid_.cell_y(qy) == rj &&
               tn < budget_ && tn - t_last_new_ < stuck))
@@ -95,19 +100,15 @@ bool PlannerRun::transit_to(Point goal) {
       }
       if (i == P.size()) break;
     }
-    const Point q = eq6.at(P, i);
-    // Eq. 7 near the walls, as on Arnold segments.
-    double x = mirror_eq7(q.x, 0.0, env_.lx, p_.fo);
-    double y = mirror_eq7(q.y, 0.0, env_.ly, p_.fo);
+    auto [x, y] = mapped(i);
     const bool blocked = !open && env_.obstacle_at(x, y) >= 0;
     // Eq. 8 as the Arnold steps read it (a transit point has no motion to reverse).
     if (blocked) keep_out_of_obstacles(env_, p_.fo, p_.obstacle_response != ObstacleResponse::push, x, y);
     const Point from = position();
     const int ci = grid_.cell_x(x), cj = grid_.cell_y(y);
     if (ci != ri || cj != rj) {
-      const Point a = eq6.at(P, std::min(i + ahead, P.size() - 1));
-      grid_.prefetch(grid_.cell_x(mirror_eq7(a.x, 0.0, env_.lx, p_.fo)),
-                     grid_.cell_y(mirror_eq7(a.y, 0.0, env_.ly, p_.fo)));
+      const Point a = mapped(std::min(i + ahead, P.size() - 1));
+      grid_.prefetch(grid_.cell_x(a.x), grid_.cell_y(a.y));
     }
     if (!robot_.jump_within(x, y, ci, cj, ri, rj)) robot_.jump_to(x, y);
     ri = ci;
