@@ -25,6 +25,16 @@ inline void lane_store(double* p, V v) {
   __builtin_memcpy(p, &v, sizeof v);
 }
 
+// What bounds a kernel's lanes, each form a loop of its own (steps_until_sink):
+// mirror, Eq. 7's band only (open maps); obstacles, the band and Eq. 8 in
+// each lane's obstacle box; fold, some lane on the fold boundary (its
+// unfolded position folded in full), obstacles or not. The mirror
+// boundary's lanes reflect once per axis in every form but fold (a step
+// that needs more leaves the band, and so the box, and goes to the sink):
+// folding in full, at every step, the lanes of Table 1's obstacle maps paid
+// for the fold lanes no run of theirs has.
+enum class LaneWalls { mirror, obstacles, fold };
+
 // The steps fast_path applied (lane o in bit 0), and among them those that
 // entered a neighbouring cell across an edge (to be marked: mark_entered) or
 // a corner (mark_diagonal).
@@ -41,7 +51,7 @@ template <class V>
 struct FastPathInputs {
   V lo_x, hi_x, lo_y, hi_y, fh, inv, mi, mj, budget, stuck_time, niter;
   decltype(V() < V()) fast_ok, fast_cross, fast_diag;                    // fast >= 1, >= 2, == 3
-  V box_x0, box_x1, box_y0, box_y1, near_x0, near_x1, near_y0, near_y1;  // the general form's
+  V box_x0, box_x1, box_y0, box_y1, near_x0, near_x1, near_y0, near_y1;  // with obstacles
   decltype(V() < V()) near_mirror;
 };
 
@@ -78,20 +88,20 @@ inline FastPathInputs<V> load_fast_path_inputs(const LaneArrays& a, int o) {
 // RobotMotion::move, CoverageGrid::cell_x and PlannerRun::after_move
 // operation for operation, so a lane's result never depends on the path.
 // `passes`: the steps taken since the arrays' step and segment counts were
-// last brought up to date (count_steps), this one included. General: some
-// lane of the kernel has the fold boundary or obstacles (else the short form
-// for mirror lanes on open maps). Diagonal: the fast = 3 lanes' steps into a
-// diagonal neighbour are applied too (their start kept in X0, Y0).
-template <class V, bool General, bool Diagonal>
+// last brought up to date (count_steps), this one included. Walls: what
+// bounds the kernel's lanes (LaneWalls). Diagonal: the fast = 3 lanes' steps
+// into a diagonal neighbour are applied too (their start kept in X0, Y0).
+template <class V, LaneWalls Walls, bool Diagonal>
 inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, const Rk4Step<V>& s, V passes,
                               bool prefetch, double* ahead_k) {
   const V one = lane::splat<V>(1.0);
   const V X = lane_load<V>(a.X + o), Y = lane_load<V>(a.Y + o), t = lane_load<V>(a.t + o);
   const V lo_x = c.lo_x, hi_x = c.hi_x, lo_y = c.lo_y, hi_y = c.hi_y;
   V X1 = X + s.dX, Y1 = Y + s.dY, UX{}, UY{}, UX1{}, UY1{};
-  if constexpr (!General) {
+  if constexpr (Walls != LaneWalls::fold) {
     // Eq. 7 as triangle_fold's single reflections (2 lo - u, 2 hi - u); a
-    // step that needs more than one is flagged below (still outside the band).
+    // step that needs more than one is flagged below (still outside the band,
+    // which holds the obstacle box).
     X1 = lane::select(X1 < lo_x, (lo_x + lo_x) - X1, X1);
     X1 = lane::select(X1 > hi_x, (hi_x + hi_x) - X1, X1);
     Y1 = lane::select(Y1 < lo_y, (lo_y + lo_y) - Y1, Y1);
@@ -107,9 +117,9 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
     X1 = triangle_fold(lane::select(is_fold, UX1, X1), lo_x, hi_x);
     Y1 = triangle_fold(lane::select(is_fold, UY1, Y1), lo_y, hi_y);
   }
-  // The band (general form: the obstacle box) holds the step's end.
+  // The band (with obstacles: the obstacle box) holds the step's end.
   const auto inside = [&] {
-    if constexpr (!General) {
+    if constexpr (Walls == LaneWalls::mirror) {
       return (X1 >= lo_x) & (X1 <= hi_x) & (Y1 >= lo_y) & (Y1 <= hi_y);
     } else {
       // Eq. 8 (keep_out_of_obstacles) for a step that ends in the lane's
@@ -170,7 +180,7 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
   lane_store(a.X + o, lane::select(applied, X1, X));
   lane_store(a.Y + o, lane::select(applied, Y1, Y));
   lane_store(a.t + o, lane::select(applied, t1, t));
-  if constexpr (General) {
+  if constexpr (Walls == LaneWalls::fold) {
     lane_store(a.UX + o, lane::select(applied, UX1, UX));
     lane_store(a.UY + o, lane::select(applied, UY1, UY));
   }
@@ -439,7 +449,7 @@ struct StepsDone {
 // F: the system of the lanes' group (lane_group.hpp); a carried system by
 // its own step (F::step, F::step2 when Staged), any other by uncarried_step
 // (Staged ignored).
-template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
+template <class V, int N, bool Staged, LaneWalls Walls, bool Diagonal, class F>
 [[gnu::flatten, gnu::noinline]] inline StepsDone steps_until_sink(LaneArrays& a, bool prefetch) {
   constexpr int w = int(sizeof(V) / sizeof(double));  // lanes per V
   const unsigned live = a.active & ((1u << (w * N)) - 1u);
@@ -481,8 +491,8 @@ template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
     alignas(64) double ahead_k[w * N];
     d.applied = 0;
     for (int k = 0; k < N; ++k) {
-      const FastPathBits b = fast_path<V, General, Diagonal>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)),
-                                                             prefetch, ahead_k + k * w);
+      const FastPathBits b = fast_path<V, Walls, Diagonal>(a, k * w, fixed[k], s[k], lane::splat<V>(double(d.passes)),
+                                                           prefetch, ahead_k + k * w);
       d.applied |= b.applied << (k * w);
       entered |= b.entered << (k * w);
       diagonal |= b.diagonal << (k * w);
@@ -509,8 +519,8 @@ template <class V, int N, bool Staged, bool General, bool Diagonal, class F>
 // no lane needs the sink; before the sink runs, every lane's state goes to
 // the arrays, and after it comes back from them (the sink may rewrite any).
 // The step and the fast path inline into one loop body per form
-// (steps_until_sink): lanes all under the mirror boundary on open maps or
-// not (General), taking diagonal steps or not (Diagonal).
+// (steps_until_sink): by what bounds the lanes (LaneWalls), taking diagonal
+// steps or not (Diagonal).
 // Staged (N = 2): interleave the two vectors' RK4 steps stage by stage.
 // The lanes all run one group (a.system, LaneArrays::system, lane_group.hpp):
 // a carried system's own step (the Arnold flow's), or one uncarried_step per
@@ -519,21 +529,23 @@ template <class V, int N, bool Staged = false>
 [[gnu::flatten]] inline void integrate_lanes(LaneArrays& a, LaneSink& sink) {
   for (;;) {
     if (a.active == 0) return;  // (no lane would ever stop the steps)
-    bool general = false, diagonal = false, prefetch = false;
+    bool fold = false, obstacles = false, diagonal = false, prefetch = false;
     for (int l = 0; l < a.lanes; ++l) {
-      general |= a.fold[l] != 0.0 || a.obstacles[l];
+      fold |= a.fold[l] != 0.0;
+      obstacles |= a.obstacles[l];
       diagonal |= a.fast[l] == 3.0;
       prefetch |= (a.max_i[l] + 1.0) * (a.max_j[l] + 1.0) >= prefetch_grid_cells;
     }
     StepsDone d;
     with_lane_group(a.system, [&](auto tag) {
       using F = typename decltype(tag)::type;
-      if (diagonal)
-        d = general ? steps_until_sink<V, N, Staged, true, true, F>(a, prefetch)
-                    : steps_until_sink<V, N, Staged, false, true, F>(a, prefetch);
-      else
-        d = general ? steps_until_sink<V, N, Staged, true, false, F>(a, prefetch)
-                    : steps_until_sink<V, N, Staged, false, false, F>(a, prefetch);
+      const auto form = [&]<LaneWalls W>() {
+        return diagonal ? steps_until_sink<V, N, Staged, W, true, F>(a, prefetch)
+                        : steps_until_sink<V, N, Staged, W, false, F>(a, prefetch);
+      };
+      d = fold        ? form.template operator()<LaneWalls::fold>()
+          : obstacles ? form.template operator()<LaneWalls::obstacles>()
+                      : form.template operator()<LaneWalls::mirror>();
     });
     count_steps<V>(a, d.passes, d.applied);
     a.flagged = d.flagged;

@@ -632,8 +632,10 @@ TEST(SweepRunner, AnInvalidRunIsRecordedAndTheSweepGoesOn) {
 
 TEST(SweepRunner, RowsAreBitIdenticalAcrossWidthsThreadsAndBatches) {
   // Every technique set, both boundaries (also with steps longer than the
-  // map, which the lanes fold in full; steps of 0.2-0.3 cells, which the
-  // lanes take into a diagonal neighbour themselves), obstacles (with and without map
+  // map, which the lanes fold in full, and on the mirror boundary among
+  // obstacles, whose lanes reflect once and leave the rest to the sink;
+  // steps of 0.2-0.3 cells, which the lanes take into a diagonal neighbour
+  // themselves), obstacles (with and without map
   // zoning, under both boundaries, every obstacle response; a map of many,
   // indexed; obstacles closer than 2 fo, whose margins overlap), the Logistic
   // planner (its own lanes: jitter, fold, points, a stuck end, an orbit that
@@ -678,6 +680,7 @@ case = [
   { label = "diagonal-mz-obstacles", f = 2, map_zoning = 1, c = 0.8, env = "five_squares", start = [4.8, 1.6] },
   { label = "diagonal-fold-mz", f = 2.5, boundary = "fold", map_zoning = 1, c = 0.8, env = "one_square", start = [1, 8] },
   { label = "diagonal-logistic", planner = "logistic", dt_c = 0.3, env = "five_squares", start = [4.8, 1.6] },
+  { label = "obstacles-long-steps", f = 200, env = "five_squares", start = [4.8, 1.6] },
   { label = "lorenz", system = "lorenz", dt = 0.001, f = 100 },
   { label = "lorenz-fold-y", system = "lorenz", boundary = "fold", dt = 0.001, f = 100, ds_index = 2 },
   { label = "chen-obstacles", system = "chen", dt = 0.001, f = 100, env = "five_squares", start = [4.8, 1.6] },
