@@ -132,6 +132,9 @@ inline FastPathBits fast_path(LaneArrays& a, int o, const FastPathInputs<V>& c, 
       };
       const auto ends_in = in_box(X1, Y1);
       const auto pushed = (X1 > c.near_x0) & (X1 < c.near_x1) & (Y1 > c.near_y0) & (Y1 < c.near_y1);
+      // Most steps end clear of every lane's near rectangle: nothing to push,
+      // and the point stays where ends_in found it.
+      if (lane::none(pushed)) return ends_in;
       const V to_left = X1 - c.near_x0, to_right = c.near_x1 - X1, to_bottom = Y1 - c.near_y0, to_top = c.near_y1 - Y1;
       const V m_x = lane::select(to_right < to_left, to_right, to_left);
       const V m_y = lane::select(to_top < to_bottom, to_top, to_bottom);
