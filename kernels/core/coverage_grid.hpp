@@ -44,18 +44,6 @@ class CoverageGrid {
     c = c == unvisited ? std::uint8_t(visited) : c;
   }
 
-  // Fetches what mark_cell(i, j) touches (its byte, window stamp, visit
-  // count, region) ahead of the mark: a sweep's runs in flight each have a
-  // grid, MiBs in all, and a walk across the map (a transit) found the next
-  // cell's counts in no cache. A hint only: changes nothing.
-  void prefetch(int i, int j) const {
-    const std::size_t k = std::size_t(j) * nx_ + i;
-    __builtin_prefetch(cells_.data() + k);
-    __builtin_prefetch(visits_.data() + k);
-    if (!stamp_.empty()) __builtin_prefetch(stamp_.data() + k);
-    if (region_) __builtin_prefetch(region_->data() + k);
-  }
-
   // Whether mark_cell(i, j) would change nothing: the cell marked last,
   // visited (or blocked), and touched in this window already (a transit's
   // points stay about ten to a cell).

@@ -72,10 +72,6 @@ bool PlannerRun::transit_to(Point goal) {
   // distance-timed points.
   const bool quiet_ok = trace_ == nullptr && p_.transit_time == TransitTime::points;
   const double stuck = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
-  // About three cells' worth of points: at each cell change the grid's
-  // memory of the point that far on is fetched (prefetch; the next cell's
-  // came too late, the points of a cell taking less than a memory access).
-  const std::size_t ahead = 3 * std::max<std::size_t>(1, std::size_t(grid_.cell_size() / (p_.v * p_.dt_c)));
   for (std::size_t i = 1; i < P.size(); ++i) {
     if (quiet_ok && grid_.visited_cells() == last_visited_ && grid_.marks_nothing(ri, rj) &&
         (open || cell_clear(ri, rj))) {
@@ -106,10 +102,6 @@ bool PlannerRun::transit_to(Point goal) {
     if (blocked) keep_out_of_obstacles(env_, p_.fo, p_.obstacle_response != ObstacleResponse::push, x, y);
     const Point from = position();
     const int ci = grid_.cell_x(x), cj = grid_.cell_y(y);
-    if (ci != ri || cj != rj) {
-      const Point a = mapped(std::min(i + ahead, P.size() - 1));
-      grid_.prefetch(grid_.cell_x(a.x), grid_.cell_y(a.y));
-    }
     if (!robot_.jump_within(x, y, ci, cj, ri, rj)) robot_.jump_to(x, y);
     ri = ci;
     rj = cj;
