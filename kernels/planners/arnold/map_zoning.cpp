@@ -72,6 +72,10 @@ bool PlannerRun::transit_to(Point goal) {
   // distance-timed points.
   const bool quiet_ok = trace_ == nullptr && p_.transit_time == TransitTime::points;
   const double stuck = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
+  // Point i, when the quiet walk below mapped it before handing it on (a
+  // walk meanders across cell edges: it stops every few points).
+  Point walked{};
+  bool have_walked = false;
   for (std::size_t i = 1; i < P.size(); ++i) {
     if (quiet_ok && grid_.visited_cells() == last_visited_ && grid_.marks_nothing(ri, rj) &&
         (open || cell_clear(ri, rj))) {
@@ -81,13 +85,13 @@ bool PlannerRun::transit_to(Point goal) {
       const std::size_t first = i;
       double t = t_, x = 0, y = 0;
       for (; i < P.size(); ++i) {
-        const auto [qx, qy] = mapped(i);
+        walked = mapped(i);
         const double tn = t + p_.dt_c;
-        if (!(std::isfinite(qx) && std::isfinite(qy) && grid_.cell_x(qx) == ri && grid_.cell_y(qy) == rj &&
-              tn < budget_ && tn - t_last_new_ < stuck))
+        if (!(std::isfinite(walked.x) && std::isfinite(walked.y) && grid_.cell_x(walked.x) == ri &&
+              grid_.cell_y(walked.y) == rj && tn < budget_ && tn - t_last_new_ < stuck))
           break;
         t = tn;
-        x = qx, y = qy;
+        x = walked.x, y = walked.y;
       }
       if (i > first) {
         t_ = t;
@@ -95,8 +99,10 @@ bool PlannerRun::transit_to(Point goal) {
         robot_.set_position(x, y, x, y);  // as jump_within
       }
       if (i == P.size()) break;
+      have_walked = true;
     }
-    auto [x, y] = mapped(i);
+    auto [x, y] = have_walked ? walked : mapped(i);
+    have_walked = false;
     const bool blocked = !open && env_.obstacle_at(x, y) >= 0;
     // Eq. 8 as the Arnold steps read it (a transit point has no motion to reverse).
     if (blocked) keep_out_of_obstacles(env_, p_.fo, p_.obstacle_response != ObstacleResponse::push, x, y);
