@@ -13,7 +13,9 @@
 #include <tuple>
 #include <vector>
 
+#include "kernels/core/boundary.hpp"
 #include "kernels/core/coverage_grid.hpp"
+#include "kernels/core/environment.hpp"
 #include "kernels/planners/arnold/control.hpp"
 #include "kernels/planners/arnold/planner_run.hpp"
 #include "kernels/planners/arnold/transit.hpp"
@@ -397,6 +399,62 @@ TEST(Transit, ReusingTheRemainingLogisticPointsKeepsThePathsLength) {
     EXPECT_TRUE(h.trace_avoids_obstacles());
     if (replan == TransitReplan::reuse) EXPECT_EQ(h.r.transit_points, 160);
     else EXPECT_GT(h.r.transit_points, 160);  // each rebuild plans the rest anew
+  }
+}
+
+// Point for point, a transit rebuilt at an obstacle walks what its plans
+// give: Eq. 6 and 7 of the plan in force, Eq. 8 at a hit, then the next
+// plan (the rest of the Logistic points mapped anew, or a fresh path): no
+// point mapped under the plan before (say, mapped ahead, as a tried chunked
+// walk did) may be walked after a rebuild. (A trace walks every point on
+// the full path; QuietPointsGiveTheTracedRunsResults holds the quiet walk
+// to it.)
+TEST(Transit, EveryPointIsItsPlansPointAcrossRebuilds) {
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  RunParams p = mechanism_run(20.0);
+  p.th = 50;
+  p.start_x = 2.0;
+  p.start_y = 10.5;
+  const Environment env = square_map(20.0, {{5.5, 10.0, 6.5, 11.0}, {9.5, 9.5, 10.5, 10.5}, {13.5, 10.0, 14.5, 11.0}});
+  const Point goal{18.0, 10.5};
+  for (TransitReplan replan : {TransitReplan::reuse, TransitReplan::fresh}) {
+    p.transit_replan = replan;
+    Harness h(p, env);
+    const Point start = h.run->position();
+    ASSERT_TRUE(h.run->transit_to(goal)) << h.r.transit_attempts << " attempts";
+    LogisticOrbit orbit = initial_logistic(p);  // the transits' own, from its start
+    std::vector<Point> P;
+    ASSERT_TRUE(logistic_positions(start, goal, p.v, p.dt_c, orbit, P));
+    Eq6Map eq6(P, 0, start, goal);
+    std::vector<Point> want;
+    std::vector<std::size_t> hits;  // the walk's index of each hit
+    for (std::size_t k = 1; k < P.size(); ++k) {
+      const Point q = eq6.at(P, k);
+      double x = mirror_eq7(q.x, 0.0, 20.0, p.fo), y = mirror_eq7(q.y, 0.0, 20.0, p.fo);
+      const bool blocked = env.obstacle_at(x, y) >= 0;
+      if (blocked) keep_out_of_obstacles(env, p.fo, p.obstacle_response != ObstacleResponse::push, x, y);
+      want.push_back({x, y});
+      if (!blocked) continue;
+      hits.push_back(want.size());
+      if (replan == TransitReplan::reuse && k + 1 < P.size()) {
+        eq6 = Eq6Map(P, k, {x, y}, goal);
+      } else {
+        ASSERT_TRUE(logistic_positions({x, y}, goal, p.v, p.dt_c, orbit, P));
+        eq6 = Eq6Map(P, 0, {x, y}, goal);
+        k = 0;
+      }
+    }
+    std::vector<Point> got;
+    for (const TracePoint& t : h.trace.points)
+      if (t.kind == SegmentKind::transit) got.push_back({t.x, t.y});
+    const std::string what = replan == TransitReplan::reuse ? "reuse" : "fresh";
+    ASSERT_EQ(got.size(), want.size()) << what;
+    for (std::size_t n = 0; n < got.size(); ++n) {
+      ASSERT_EQ(bits(got[n].x), bits(want[n].x)) << what << ", point " << n;
+      ASSERT_EQ(bits(got[n].y), bits(want[n].y)) << what << ", point " << n;
+    }
+    ASSERT_GE(hits.size(), 2u) << what << ": " << hits.size() << " hits";  // rebuilt more than once
+    EXPECT_EQ(h.r.transit_attempts, std::int64_t(hits.size())) << what;
   }
 }
 
