@@ -72,11 +72,11 @@ bool PlannerRun::transit_to(Point goal) {
   // distance-timed points.
   const bool quiet_ok = trace_ == nullptr && p_.transit_time == TransitTime::points;
   const double stuck = p_.stuck_time > 0 ? p_.stuck_time : std::numeric_limits<double>::infinity();
-  // Point i, when the quiet walk below mapped it before handing it on (a
-  // walk meanders across cell edges: it stops every few points).
-  Point walked{};
-  bool have_walked = false;
   for (std::size_t i = 1; i < P.size(); ++i) {
+    // Point i, when the quiet walk below mapped it before handing it on (a
+    // walk meanders across cell edges: it stops every few points).
+    Point walked{};
+    bool have_walked = false;
     if (quiet_ok && grid_.visited_cells() == last_visited_ && grid_.marks_nothing(ri, rj) &&
         (open || cell_clear(ri, rj))) {
       // Clock and count in locals, stored once after the loop (stores at
@@ -102,7 +102,6 @@ bool PlannerRun::transit_to(Point goal) {
       have_walked = true;
     }
     auto [x, y] = have_walked ? walked : mapped(i);
-    have_walked = false;
     const bool blocked = !open && env_.obstacle_at(x, y) >= 0;
     // Eq. 8 as the Arnold steps read it (a transit point has no motion to reverse).
     if (blocked) keep_out_of_obstacles(env_, p_.fo, p_.obstacle_response != ObstacleResponse::push, x, y);
